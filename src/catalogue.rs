@@ -1,0 +1,107 @@
+//! The catalogue: one `algorithms/<id>.toml` per demonstration, embedded in the
+//! binary. An entry is a scene file with an `[algorithm]` table naming the paper,
+//! saying what the entry shows and the size its golden image is rendered at. An
+//! entry may `extends` another: its tables are merged over the other's, key by key.
+
+use crate::scene::resources::Embedded;
+use crate::scene::tables;
+use anyhow::{Result, anyhow, bail};
+use include_dir::{Dir, include_dir};
+use serde::{Deserialize, Serialize};
+
+static ALGORITHMS: Dir = include_dir!("$CARGO_MANIFEST_DIR/algorithms");
+
+/// Files the catalogue's scenes refer to (models, textures).
+pub fn resources() -> Embedded {
+    Embedded(&ALGORITHMS)
+}
+
+/// The `[algorithm]` table of an entry.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Algorithm {
+    pub id: String,
+    pub title: String,
+    /// Authors and year as cited, e.g. "Watkins 1970".
+    pub authors: String,
+    pub year: u32,
+    /// The full reference.
+    pub citation: String,
+    /// What the entry shows, in a paragraph.
+    pub summary: String,
+    /// The size the golden image is rendered at.
+    pub test_width: u32,
+    pub test_height: u32,
+    /// Another entry whose scene this one starts from.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extends: Option<String>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Entry {
+    pub algorithm: Algorithm,
+    /// The scene, `extends` resolved.
+    pub scene: toml::Table,
+}
+
+/// Ids of all entries, sorted.
+pub fn ids() -> Vec<String> {
+    let mut ids: Vec<String> = ALGORITHMS
+        .files()
+        .filter_map(|f| {
+            let path = f.path();
+            (path.extension()? == "toml").then(|| path.file_stem()?.to_str().map(String::from))?
+        })
+        .collect();
+    ids.sort();
+    ids
+}
+
+/// All entries, in id order.
+pub fn entries() -> Result<Vec<Entry>> {
+    ids().iter().map(|id| entry(id)).collect()
+}
+
+pub fn entry(id: &str) -> Result<Entry> {
+    entry_from(id, &mut Vec::new())
+}
+
+fn entry_from(id: &str, chain: &mut Vec<String>) -> Result<Entry> {
+    if chain.iter().any(|c| c == id) {
+        bail!("catalogue entries extend each other in a cycle: {} -> {id}", chain.join(" -> "));
+    }
+    chain.push(id.to_string());
+    let name = format!("{id}.toml");
+    let file = ALGORITHMS.get_file(&name).ok_or_else(|| unknown(id))?;
+    let text = file.contents_utf8().ok_or_else(|| anyhow!("{name} is not UTF-8"))?;
+    let mut table = tables::parse(text, &format!("algorithms/{name}"))?;
+    let algorithm: Algorithm = table
+        .remove("algorithm")
+        .ok_or_else(|| anyhow!("algorithms/{name}: no [algorithm] table"))?
+        .try_into()
+        .map_err(|e| anyhow!("algorithms/{name}: [algorithm]: {e}"))?;
+    if algorithm.id != id {
+        bail!("algorithms/{name}: [algorithm] id is `{}`", algorithm.id);
+    }
+    let scene = match &algorithm.extends {
+        Some(base) => {
+            let mut scene = entry_from(base, chain)?.scene;
+            tables::merge(&mut scene, table);
+            scene
+        }
+        None => table,
+    };
+    Ok(Entry { algorithm, scene })
+}
+
+fn unknown(id: &str) -> anyhow::Error {
+    let known = ids();
+    let nearest = known
+        .iter()
+        .min_by_key(|k| strsim::levenshtein(k, id))
+        .filter(|k| strsim::levenshtein(k, id) <= k.len().max(id.len()) / 2);
+    match nearest {
+        Some(n) => anyhow!("no catalogue entry `{id}`; did you mean `{n}`? (`lumiere list` shows them all)"),
+        None => anyhow!("no catalogue entry `{id}` (`lumiere list` shows them all)"),
+    }
+}

@@ -1,0 +1,38 @@
+//! The command line: one file per subcommand.
+
+mod bench;
+mod compare;
+mod list;
+mod render;
+
+use anyhow::Result;
+use clap::{Parser, Subcommand};
+
+/// lumiere renders the classic scan-line algorithms as their papers did them.
+///
+/// Every demonstration of the catalogue renders by its id from any directory:
+/// `lumiere list` shows them, `lumiere render cornell-box -o cornell.png` renders one.
+/// Scene files (TOML, see docs/scene-format.md) render the same way.
+#[derive(Parser, Debug)]
+#[command(name = "lumiere", version, about, long_about)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    List(list::Args),
+    Render(render::Args),
+    Compare(compare::Args),
+    Bench(bench::Args),
+}
+
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::List(a) => list::run(a),
+        Command::Render(a) => render::run(a),
+        Command::Compare(a) => compare::run(a),
+        Command::Bench(a) => bench::run(a),
+    }
+}

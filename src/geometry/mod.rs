@@ -1,0 +1,4 @@
+//! Polygons and clipping, shared by every pass that works at object precision.
+
+pub mod polygon;
+pub mod sutherland_hodgman;

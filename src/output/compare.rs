@@ -1,0 +1,70 @@
+//! Comparing two images: RMSE, PSNR, largest channel difference and the share of
+//! pixels that differ visibly, on the 8-bit sRGB values both images display as (so
+//! a PNG and a PFM of the same render compare equal).
+
+use super::{Image, srgb_decode, to_srgb8};
+use anyhow::{Result, ensure};
+use glam::Vec3;
+
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Comparison {
+    /// Root mean square difference of the channels, in [0, 1].
+    pub rmse: f64,
+    /// Peak signal-to-noise ratio in dB (infinite for identical images).
+    pub psnr: f64,
+    /// Largest difference of one channel, in 1/255 steps.
+    pub max_difference: u8,
+    /// Share of pixels with a channel differing by more than 2/255.
+    pub differing_share: f64,
+}
+
+pub fn compare(a: &Image, b: &Image, exposure: f32) -> Result<Comparison> {
+    ensure!(
+        (a.width, a.height) == (b.width, b.height),
+        "the images differ in size: {}x{} and {}x{}",
+        a.width,
+        a.height,
+        b.width,
+        b.height
+    );
+    let mut squares = 0.0;
+    let mut max_difference = 0u8;
+    let mut differing = 0usize;
+    for (p, q) in a.pixels.iter().zip(&b.pixels) {
+        let (p, q) = (to_srgb8(*p, exposure), to_srgb8(*q, exposure));
+        let worst = (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap_or(0);
+        max_difference = max_difference.max(worst);
+        differing += usize::from(worst > 2);
+        squares += (0..3)
+            .map(|c| ((p[c] as f64 - q[c] as f64) / 255.0).powi(2))
+            .sum::<f64>();
+    }
+    let rmse = (squares / (3 * a.pixels.len()) as f64).sqrt();
+    Ok(Comparison {
+        rmse,
+        psnr: if rmse == 0.0 { f64::INFINITY } else { -20.0 * rmse.log10() },
+        max_difference,
+        differing_share: differing as f64 / a.pixels.len() as f64,
+    })
+}
+
+/// |a − b| per channel of the displayed values, magnified `gain` times (linear
+/// values, ready to save as PNG with exposure 1).
+pub fn difference_image(a: &Image, b: &Image, exposure: f32, gain: f32) -> Image {
+    let pixels = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .map(|(p, q)| {
+            let (p, q) = (to_srgb8(*p, exposure), to_srgb8(*q, exposure));
+            // Linear values whose sRGB encoding is the magnified difference.
+            let d = |c: usize| srgb_decode((p[c].abs_diff(q[c]) as f32 / 255.0 * gain).min(1.0));
+            Vec3::new(d(0), d(1), d(2))
+        })
+        .collect();
+    Image {
+        width: a.width,
+        height: a.height,
+        pixels,
+    }
+}

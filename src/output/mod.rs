@@ -1,0 +1,133 @@
+//! Images: linear radiance in memory; PNG (sRGB after exposure) and PFM (linear) on
+//! disk, chosen by extension; files are written whole or not at all.
+
+mod compare;
+mod pfm;
+mod png;
+
+pub use compare::{Comparison, compare, difference_image};
+
+use anyhow::{Context, Result, bail};
+use glam::Vec3;
+use std::io::Write;
+use std::path::Path;
+
+/// Linear RGB radiance, row-major, row 0 at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<Vec3>,
+}
+
+impl Image {
+    /// The mean of each `factor × factor` block: the box filter over each pixel's
+    /// square, from a grid sampled `factor` times finer.
+    pub fn downsample(&self, factor: u32) -> Image {
+        if factor == 1 {
+            return self.clone();
+        }
+        let (w, h) = (self.width / factor, self.height / factor);
+        let weight = 1.0 / (factor * factor) as f32;
+        let pixels = (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let mut sum = Vec3::ZERO;
+                for sy in 0..factor {
+                    let row = ((y * factor + sy) * self.width) as usize;
+                    for sx in 0..factor {
+                        sum += self.pixels[row + (x * factor + sx) as usize];
+                    }
+                }
+                sum * weight
+            })
+            .collect();
+        Image {
+            width: w,
+            height: h,
+            pixels,
+        }
+    }
+}
+
+/// The file formats, by extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Png,
+    Pfm,
+}
+
+impl Format {
+    pub fn of(path: &Path) -> Result<Format> {
+        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+            Some("png") => Ok(Format::Png),
+            Some("pfm") => Ok(Format::Pfm),
+            _ => bail!(
+                "{}: unknown image format (use .png for sRGB or .pfm for linear radiance)",
+                path.display()
+            ),
+        }
+    }
+}
+
+/// The bytes of `image` in `format` (exposure applies to PNG only).
+pub fn encode(image: &Image, format: Format, exposure: f32) -> Result<Vec<u8>> {
+    match format {
+        Format::Png => png::encode(image, exposure),
+        Format::Pfm => Ok(pfm::encode(image)),
+    }
+}
+
+/// Writes `image` to `path`: to a temporary file beside it, then renamed, so a
+/// failure never leaves a half-written file.
+pub fn save(image: &Image, path: &Path, exposure: f32) -> Result<()> {
+    let bytes = encode(image, Format::of(path)?, exposure)?;
+    write_atomically(path, &bytes)
+}
+
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let mut file = tempfile::NamedTempFile::new_in(dir)
+        .with_context(|| format!("cannot write in {}", dir.display()))?;
+    file.write_all(bytes)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    file.persist(path)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(())
+}
+
+/// Reads a PNG (decoded from sRGB to linear) or a PFM.
+pub fn load(path: &Path) -> Result<Image> {
+    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    match Format::of(path)? {
+        Format::Png => png::decode(&bytes),
+        Format::Pfm => pfm::decode(&bytes),
+    }
+    .with_context(|| format!("{}", path.display()))
+}
+
+/// sRGB transfer function of a linear value in [0, 1].
+pub fn srgb_encode(linear: f32) -> f32 {
+    if linear <= 0.003_130_8 {
+        12.92 * linear
+    } else {
+        1.055 * linear.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+pub fn srgb_decode(encoded: f32) -> f32 {
+    if encoded <= 0.040_45 {
+        encoded / 12.92
+    } else {
+        ((encoded + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// 8-bit sRGB of a linear radiance after exposure (clamped to [0, 1]).
+pub fn to_srgb8(radiance: Vec3, exposure: f32) -> [u8; 3] {
+    let q = |c: f32| (srgb_encode((c * exposure).clamp(0.0, 1.0)) * 255.0).round() as u8;
+    [q(radiance.x), q(radiance.y), q(radiance.z)]
+}

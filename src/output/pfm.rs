@@ -1,0 +1,77 @@
+//! PFM (portable float map): a text header `PF\n<w> <h>\n<scale>\n` then
+//! little-endian f32 RGB triples (negative scale), rows from the bottom up.
+
+use super::Image;
+use anyhow::{Context, Result, bail, ensure};
+use glam::Vec3;
+
+pub fn encode(image: &Image) -> Vec<u8> {
+    let mut out = format!("PF\n{} {}\n-1.0\n", image.width, image.height).into_bytes();
+    for row in image.pixels.chunks(image.width as usize).rev() {
+        for p in row {
+            for c in p.to_array() {
+                out.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+    }
+    out
+}
+
+pub fn decode(bytes: &[u8]) -> Result<Image> {
+    let mut fields = Vec::new();
+    let mut at = 0;
+    // Three whitespace-separated header tokens after "PF": width, height, scale.
+    while fields.len() < 4 {
+        while at < bytes.len() && bytes[at].is_ascii_whitespace() {
+            at += 1;
+        }
+        let start = at;
+        while at < bytes.len() && !bytes[at].is_ascii_whitespace() {
+            at += 1;
+        }
+        ensure!(at > start, "not a PFM file (short header)");
+        fields.push(std::str::from_utf8(&bytes[start..at])?.to_string());
+    }
+    at += 1; // the single whitespace byte that ends the header
+    if fields[0] != "PF" {
+        bail!("not a colour PFM file (header {})", fields[0]);
+    }
+    let width: u32 = fields[1].parse().context("bad PFM width")?;
+    let height: u32 = fields[2].parse().context("bad PFM height")?;
+    let scale: f32 = fields[3].parse().context("bad PFM scale")?;
+    ensure!(width > 0 && height > 0, "the image is empty");
+    let count = width as usize * height as usize;
+    let data = bytes.get(at..at + count * 12).context("truncated PFM data")?;
+    let read = |k: usize| {
+        let b = [data[4 * k], data[4 * k + 1], data[4 * k + 2], data[4 * k + 3]];
+        if scale < 0.0 { f32::from_le_bytes(b) } else { f32::from_be_bytes(b) }
+    };
+    let mut pixels = vec![Vec3::ZERO; count];
+    for y in 0..height as usize {
+        let source = (height as usize - 1 - y) * width as usize;
+        for x in 0..width as usize {
+            let k = 3 * (source + x);
+            pixels[y * width as usize + x] = Vec3::new(read(k), read(k + 1), read(k + 2));
+        }
+    }
+    Ok(Image {
+        width,
+        height,
+        pixels,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn round_trip_is_exact() {
+        let image = Image {
+            width: 3,
+            height: 2,
+            pixels: (0..6).map(|k| Vec3::new(k as f32, 0.5, -1e-3 * k as f32)).collect(),
+        };
+        assert_eq!(decode(&encode(&image)).unwrap(), image);
+    }
+}

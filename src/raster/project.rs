@@ -1,0 +1,158 @@
+//! From world polygons to screen polygons: into the eye frame, clipped to the view
+//! frustum (Sutherland–Hodgman, in eye space, before the perspective divide), then
+//! projected. Each screen polygon carries its depth plane (Watkins' polygon table).
+
+use super::View;
+use crate::geometry::sutherland_hodgman::{Lerp, clip};
+use crate::scene::Vertex;
+use glam::{DVec3, Vec3};
+
+/// Number of interpolated attributes: world position (3), shading normal (3),
+/// texture coordinates (2), vertex colour (3).
+pub const ATTRIBUTES: usize = 11;
+pub type Attributes = [f64; ATTRIBUTES];
+
+/// A vertex in the eye frame with the attributes to interpolate.
+#[derive(Clone, Copy, Debug)]
+pub struct RasterVertex {
+    pub eye: DVec3,
+    pub attributes: Attributes,
+}
+
+impl RasterVertex {
+    pub fn new(view: &View, v: &Vertex, color: Vec3) -> RasterVertex {
+        let (p, n) = (v.position, v.normal);
+        RasterVertex {
+            eye: view.to_eye(p),
+            attributes: [
+                p.x,
+                p.y,
+                p.z,
+                n.x,
+                n.y,
+                n.z,
+                v.uv.x,
+                v.uv.y,
+                color.x as f64,
+                color.y as f64,
+                color.z as f64,
+            ],
+        }
+    }
+}
+
+impl Lerp for RasterVertex {
+    fn lerp(&self, other: &Self, t: f64) -> Self {
+        let mut attributes = self.attributes;
+        for (a, b) in attributes.iter_mut().zip(other.attributes) {
+            *a += (b - *a) * t;
+        }
+        RasterVertex {
+            eye: self.eye + (other.eye - self.eye) * t,
+            attributes,
+        }
+    }
+}
+
+/// A projected vertex: screen position, ζ = 1/z (z the eye distance) and the
+/// attributes divided by z, all of which vary linearly across the screen image of a
+/// planar polygon (what makes perspective-correct interpolation exact).
+#[derive(Clone, Copy, Debug)]
+pub struct ScreenVertex {
+    pub x: f64,
+    pub y: f64,
+    pub zeta: f64,
+    pub attributes_over_z: Attributes,
+}
+
+/// ζ = 1/z as an affine function of the screen position: the polygon's plane in
+/// screen space. Nearer means larger ζ. (Any z_s = A + B/z of a projection matrix
+/// orders and interpolates the same way; ζ needs no far plane.)
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DepthPlane {
+    pub a: f64,
+    pub b: f64,
+    pub c: f64,
+}
+
+impl DepthPlane {
+    pub fn zeta(&self, x: f64, y: f64) -> f64 {
+        self.a * x + self.b * y + self.c
+    }
+
+    /// Newell's plane through screen points (x, y, ζ); `None` when the polygon is
+    /// seen edge-on (no screen area).
+    fn through(vertices: &[ScreenVertex]) -> Option<DepthPlane> {
+        let points: Vec<DVec3> = vertices.iter().map(|v| DVec3::new(v.x, v.y, v.zeta)).collect();
+        let n = crate::geometry::polygon::newell_normal(&points);
+        if !(n.z.abs() > 0.0) {
+            return None;
+        }
+        let centre = points.iter().copied().sum::<DVec3>() / points.len() as f64;
+        let (a, b) = (-n.x / n.z, -n.y / n.z);
+        Some(DepthPlane {
+            a,
+            b,
+            c: centre.z - a * centre.x - b * centre.y,
+        })
+    }
+}
+
+/// A polygon ready for the scan-line pass. `id` is what the visible-surface buffer
+/// records (the scene polygon id).
+#[derive(Clone, Debug)]
+pub struct ScreenPolygon {
+    pub id: u32,
+    pub vertices: Vec<ScreenVertex>,
+    pub plane: DepthPlane,
+}
+
+impl ScreenPolygon {
+    /// Clips an eye-space polygon to the view frustum and projects it; `None` when
+    /// nothing of it is in view or it is seen edge-on.
+    pub fn new(view: &View, id: u32, vertices: Vec<RasterVertex>) -> Option<ScreenPolygon> {
+        let mut polygon = vertices;
+        for plane in view.frustum() {
+            polygon = clip(&polygon, |v| plane.truncate().dot(v.eye) + plane.w);
+            if polygon.len() < 3 {
+                return None;
+            }
+        }
+        let vertices: Vec<ScreenVertex> = polygon
+            .iter()
+            .map(|v| {
+                let (x, y) = view.project(v.eye);
+                let zeta = 1.0 / v.eye.z;
+                ScreenVertex {
+                    x,
+                    y,
+                    zeta,
+                    attributes_over_z: v.attributes.map(|a| a * zeta),
+                }
+            })
+            .collect();
+        let plane = DepthPlane::through(&vertices)?;
+        Some(ScreenPolygon {
+            id,
+            vertices,
+            plane,
+        })
+    }
+}
+
+/// Screen polygons of world polygons given as (id, vertices, vertex colours).
+pub fn prepare<'a>(
+    view: &View,
+    polygons: impl Iterator<Item = (u32, &'a [Vertex], &'a [Vec3])>,
+) -> Vec<ScreenPolygon> {
+    polygons
+        .filter_map(|(id, vertices, colors)| {
+            let eye = vertices
+                .iter()
+                .enumerate()
+                .map(|(k, v)| RasterVertex::new(view, v, colors.get(k).copied().unwrap_or_default()))
+                .collect();
+            ScreenPolygon::new(view, id, eye)
+        })
+        .collect()
+}

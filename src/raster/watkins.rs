@@ -1,0 +1,243 @@
+//! The scan-line sweep: G. S. Watkins, "A Real-Time Visible Surface Algorithm", PhD
+//! thesis, University of Utah, 1970; W. J. Bouknight, "A procedure for generation of
+//! three-dimensional half-toned computer graphics presentations", CACM 13(9), 1970.
+//!
+//! For every row: merge the edge-table bucket into the active edge list (AEL), drop
+//! finished edges, re-sort by x (insertion sort: the list is nearly sorted already),
+//! and walk it left to right. Each crossing toggles its polygon in or out of the
+//! "inside" set; between two crossings lies a span whose set is constant. A span with
+//! one polygon shows it; with several, each candidate's depth is evaluated at the
+//! span's two end samples: if one polygon is nearest at both ends it is nearest over
+//! the whole span (planes can only swap order where they intersect); otherwise the
+//! span is split where the two winners' depths cross, and each part is decided again
+//! (Watkins' subdivision for interpenetrating polygons).
+//!
+//! Choices left open: depths are compared at sample centres, not at the span's real
+//! ends (the samples are what is displayed, and it makes the result equal a z-buffer
+//! sample for sample); equal depths go to the polygon given first. Rows are swept in
+//! fixed bands of `BAND_ROWS` on parallel threads; a band's AEL starts from the edge
+//! table exactly as a full sweep would have it (see `edge_table`).
+
+use super::edge_table::{Edge, EdgeTable, FIXED_ONE, first_pixel_at_or_after};
+use super::project::ATTRIBUTES;
+use super::{Sample, ScreenPolygon, VisibleSurface};
+use glam::{DVec3, Vec2, Vec3};
+use rayon::prelude::*;
+
+const BAND_ROWS: u32 = 8;
+
+/// The visible surface at every sample of a `width × height` grid.
+pub fn rasterize(polygons: &[ScreenPolygon], width: u32, height: u32) -> VisibleSurface {
+    let table = EdgeTable::build(polygons, height);
+    let mut samples = vec![Sample::EMPTY; width as usize * height as usize];
+    samples
+        .par_chunks_mut((width * BAND_ROWS) as usize)
+        .enumerate()
+        .for_each(|(band, rows)| {
+            let mut sweep = Sweep::starting_at(&table, band as u32 * BAND_ROWS);
+            for row in rows.chunks_mut(width as usize) {
+                let y = sweep.row as f64 + 0.5;
+                sweep.for_each_span(width, |i0, i1, inside, active| {
+                    resolve_span(i0, i1, y, inside, active, polygons, row)
+                });
+                sweep.next_row();
+            }
+        });
+    VisibleSurface {
+        width,
+        height,
+        samples,
+    }
+}
+
+/// The samples (x, y) one polygon covers, found by the same sweep (for tests of the
+/// fill rule and for passes that need a polygon's footprint).
+pub fn covered_samples(polygon: &ScreenPolygon, width: u32, height: u32) -> Vec<(u32, u32)> {
+    let table = EdgeTable::build(std::slice::from_ref(polygon), height);
+    let mut sweep = Sweep::starting_at(&table, 0);
+    let mut covered = Vec::new();
+    for _ in 0..height {
+        let row = sweep.row;
+        sweep.for_each_span(width, |i0, i1, _, _| {
+            covered.extend((i0..=i1).map(|i| (i as u32, row)));
+        });
+        sweep.next_row();
+    }
+    covered
+}
+
+/// A polygon inside the current span, with its own left and right crossings on this
+/// row (indices into the AEL), between which its attributes are interpolated.
+#[derive(Clone, Copy, Debug)]
+struct Inside {
+    polygon: u32,
+    left: usize,
+    right: usize,
+}
+
+struct Sweep<'a> {
+    table: &'a EdgeTable,
+    row: u32,
+    /// Active edges with their edge-table index (the tie-break of the sort).
+    active: Vec<(u32, Edge)>,
+}
+
+impl<'a> Sweep<'a> {
+    fn starting_at(table: &'a EdgeTable, row: u32) -> Sweep<'a> {
+        let active = table
+            .edges
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.first_row < row && e.last_row >= row)
+            .map(|(k, e)| (k as u32, e.advanced(row - e.first_row)))
+            .collect();
+        let mut sweep = Sweep { table, row, active };
+        sweep.enter_row();
+        sweep
+    }
+
+    /// Merges this row's bucket, drops finished edges, restores x order.
+    fn enter_row(&mut self) {
+        if let Some(bucket) = self.table.buckets.get(self.row as usize) {
+            self.active
+                .extend(bucket.iter().map(|&k| (k, self.table.edges[k as usize].clone())));
+        }
+        let row = self.row;
+        self.active.retain(|(_, e)| e.last_row >= row);
+        insertion_sort(&mut self.active);
+    }
+
+    fn next_row(&mut self) {
+        for (_, e) in &mut self.active {
+            e.step();
+        }
+        self.row += 1;
+        self.enter_row();
+    }
+
+    /// Calls `f(first, last, inside, active)` for every span of this row that covers
+    /// at least one sample and lies inside at least one polygon.
+    fn for_each_span(&self, width: u32, mut f: impl FnMut(i64, i64, &[Inside], &[(u32, Edge)])) {
+        let active = &self.active;
+        // Pair each polygon's crossings in x order: 1st with 2nd, 3rd with 4th…
+        let mut order: Vec<(u32, usize)> = active
+            .iter()
+            .enumerate()
+            .map(|(k, (_, e))| (e.polygon, k))
+            .collect();
+        order.sort_unstable();
+        let mut partner = vec![usize::MAX; active.len()];
+        for pair in order.chunks_exact(2) {
+            if pair[0].0 == pair[1].0 {
+                partner[pair[0].1] = pair[1].1;
+                partner[pair[1].1] = pair[0].1;
+            }
+        }
+        let mut inside: Vec<Inside> = Vec::new();
+        for k in 0..active.len() {
+            match partner[k] {
+                usize::MAX => continue,
+                p if p > k => inside.push(Inside {
+                    polygon: active[k].1.polygon,
+                    left: k,
+                    right: p,
+                }),
+                _ => inside.retain(|c| c.right != k),
+            }
+            if inside.is_empty() || k + 1 == active.len() {
+                continue;
+            }
+            let first = first_pixel_at_or_after(active[k].1.x).max(0);
+            let last = (first_pixel_at_or_after(active[k + 1].1.x) - 1).min(width as i64 - 1);
+            if first <= last {
+                f(first, last, &inside, active);
+            }
+        }
+    }
+}
+
+fn insertion_sort(active: &mut [(u32, Edge)]) {
+    let key = |(k, e): &(u32, Edge)| (e.x, *k);
+    for i in 1..active.len() {
+        let mut j = i;
+        while j > 0 && key(&active[j - 1]) > key(&active[j]) {
+            active.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+}
+
+/// Decides the span [i0, i1] of row y and writes its samples.
+fn resolve_span(
+    i0: i64,
+    i1: i64,
+    y: f64,
+    inside: &[Inside],
+    active: &[(u32, Edge)],
+    polygons: &[ScreenPolygon],
+    row: &mut [Sample],
+) {
+    if let [only] = inside {
+        (i0..=i1).for_each(|i| row[i as usize] = sample(only, i, y, active, polygons));
+        return;
+    }
+    let mut pending = vec![(i0, i1)];
+    while let Some((a, b)) = pending.pop() {
+        let left = nearest(inside, a as f64 + 0.5, y, polygons);
+        let right = nearest(inside, b as f64 + 0.5, y, polygons);
+        if left.polygon == right.polygon || a == b {
+            (a..=b).for_each(|i| row[i as usize] = sample(&left, i, y, active, polygons));
+            continue;
+        }
+        // Split where the two winners' depths cross along the row.
+        let (p, q) = (
+            polygons[left.polygon as usize].plane,
+            polygons[right.polygon as usize].plane,
+        );
+        let crossing = -((p.b - q.b) * y + (p.c - q.c)) / (p.a - q.a);
+        let split = if crossing.is_finite() {
+            ((crossing - 0.5).floor() as i64).clamp(a, b - 1)
+        } else {
+            (a + b) / 2
+        };
+        pending.push((split + 1, b));
+        pending.push((a, split));
+    }
+}
+
+/// The candidate nearest the eye at (x, y): largest ζ, ties to the first given.
+fn nearest(inside: &[Inside], x: f64, y: f64, polygons: &[ScreenPolygon]) -> Inside {
+    let mut best = inside[0];
+    let mut best_zeta = polygons[best.polygon as usize].plane.zeta(x, y);
+    for &c in &inside[1..] {
+        let zeta = polygons[c.polygon as usize].plane.zeta(x, y);
+        if zeta > best_zeta || (zeta == best_zeta && c.polygon < best.polygon) {
+            best = c;
+            best_zeta = zeta;
+        }
+    }
+    best
+}
+
+/// The sample of polygon `c` at pixel i of row y: attributes interpolated
+/// perspective-correctly between its own two crossings, depth from its plane.
+fn sample(c: &Inside, i: i64, y: f64, active: &[(u32, Edge)], polygons: &[ScreenPolygon]) -> Sample {
+    let (l, r) = (&active[c.left].1, &active[c.right].1);
+    let (xl, xr) = (l.x as f64 / FIXED_ONE as f64, r.x as f64 / FIXED_ONE as f64);
+    let x = i as f64 + 0.5;
+    let t = if xr > xl { (x - xl) / (xr - xl) } else { 0.0 };
+    let zeta = l.zeta + (r.zeta - l.zeta) * t;
+    let mut a = [0.0; ATTRIBUTES];
+    for k in 0..ATTRIBUTES {
+        a[k] = (l.attributes[k] + (r.attributes[k] - l.attributes[k]) * t) / zeta;
+    }
+    let polygon = &polygons[c.polygon as usize];
+    Sample {
+        polygon: polygon.id,
+        depth: 1.0 / polygon.plane.zeta(x, y),
+        position: DVec3::new(a[0], a[1], a[2]),
+        normal: DVec3::new(a[3], a[4], a[5]).normalize_or_zero().as_vec3(),
+        uv: Vec2::new(a[6] as f32, a[7] as f32),
+        color: Vec3::new(a[8] as f32, a[9] as f32, a[10] as f32),
+    }
+}

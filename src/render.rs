@@ -1,0 +1,43 @@
+//! One frame: clip and project, the scan-line visible-surface pass, the visibility
+//! terms, shading, and the box filter down to pixels.
+
+use crate::output::Image;
+use crate::raster::{VisibleSurface, View, prepare, rasterize};
+use crate::scene::Scene;
+use crate::shading::{shade, vertex_colors};
+use crate::shadow::Visibility;
+
+/// The visible surface of `scene` on its sample grid (pixels × supersample).
+pub fn visible_surface(scene: &Scene) -> (View, VisibleSurface) {
+    let view = sample_view(scene);
+    let colors = vertex_colors(scene, &view);
+    let polygons = prepare(
+        &view,
+        scene
+            .polygons
+            .iter()
+            .zip(&colors)
+            .enumerate()
+            .map(|(id, (p, c))| (id as u32, p.vertices.as_slice(), c.as_slice())),
+    );
+    let surface = rasterize(&polygons, view.width, view.height);
+    (view, surface)
+}
+
+/// The view of the scene's sample grid.
+pub fn sample_view(scene: &Scene) -> View {
+    let n = scene.render.supersample;
+    View::new(&scene.camera, scene.camera.width * n, scene.camera.height * n)
+}
+
+/// Linear radiance image of `scene`.
+pub fn render(scene: &Scene) -> Image {
+    let (view, surface) = visible_surface(scene);
+    let radiance = shade(scene, &view, &surface, &Visibility::none());
+    Image {
+        width: view.width,
+        height: view.height,
+        pixels: radiance,
+    }
+    .downsample(scene.render.supersample)
+}

@@ -1,0 +1,284 @@
+//! From a parsed scene table to a `Scene`: shapes generated, OBJ files loaded,
+//! transforms applied, materials resolved, emitters turned into area lights.
+
+use super::file::{LightFile, ObjectFile, SceneFile, ShapeKind};
+use super::resources::Resources;
+use super::shapes::{self, Faces};
+use super::{
+    AreaLight, Light, Material, Object, PointLight, Polygon, RenderSettings, Scene, materials,
+    obj, transform, validate,
+};
+use crate::geometry::polygon::{area, newell_normal, non_planarity};
+use anyhow::{Context, Result, anyhow, bail, ensure};
+use glam::{DVec3, Vec3};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Default segment count of spheres and cylinders.
+const DEFAULT_RESOLUTION: u32 = 32;
+
+pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result<Scene> {
+    let file: SceneFile = serde_path_to_error::deserialize(toml::Value::Table(table))
+        .map_err(|e| anyhow!("{}: {}", e.path(), e.inner()))?;
+    let camera = validate::camera(&file.camera)?;
+    let render = RenderSettings {
+        shading: file.render.shading,
+        exposure: file.render.exposure as f32,
+        supersample: file.render.supersample,
+        background: validate::colour("render.background", file.render.background)?,
+    };
+    ensure!(
+        file.render.exposure.is_finite() && file.render.exposure > 0.0,
+        "render.exposure must be a positive number"
+    );
+    validate::image_size(camera.width, camera.height, render.supersample)?;
+
+    let mut builder = Builder::default();
+    for (name, m) in &file.materials {
+        builder.add_material(materials::from_file(name, m)?);
+    }
+    for (index, object) in file.objects.iter().enumerate() {
+        builder
+            .add_object(index, object, resources)
+            .with_context(|| format!("objects[{index}]"))?;
+    }
+    let mut lights = Vec::new();
+    for (index, light) in file.lights.iter().enumerate() {
+        if let Some(light) = builder
+            .add_light(index, light)
+            .with_context(|| format!("lights[{index}]"))?
+        {
+            lights.push(light);
+        }
+    }
+    lights.extend(builder.area_lights());
+
+    Ok(Scene {
+        camera,
+        render,
+        materials: builder.materials,
+        objects: builder.objects,
+        polygons: builder.polygons,
+        lights,
+        warnings: builder.warnings,
+    })
+}
+
+#[derive(Default)]
+struct Builder {
+    materials: Vec<Material>,
+    material_index: HashMap<String, usize>,
+    objects: Vec<Object>,
+    polygons: Vec<Polygon>,
+    warnings: Vec<String>,
+}
+
+impl Builder {
+    fn add_material(&mut self, m: Material) -> usize {
+        let index = self.materials.len();
+        self.material_index.insert(m.name.clone(), index);
+        self.materials.push(m);
+        index
+    }
+
+    fn material(&self, name: &str) -> Result<usize> {
+        self.material_index.get(name).copied().ok_or_else(|| {
+            let mut known: Vec<&str> = self.material_index.keys().map(String::as_str).collect();
+            known.sort();
+            anyhow!("unknown material `{name}` (known: {})", known.join(", "))
+        })
+    }
+
+    fn add_object(&mut self, index: usize, o: &ObjectFile, res: &dyn Resources) -> Result<()> {
+        check_keys(o)?;
+        let name = o.name.clone().unwrap_or_else(|| format!("object {index}"));
+        let m = transform::matrix(&o.transform)?;
+        let resolution = o.resolution.unwrap_or(DEFAULT_RESOLUTION);
+        let smooth = o.smooth.unwrap_or(true);
+        let faces: Faces = match o.shape {
+            ShapeKind::Obj => return self.add_obj(&name, o, &m, res),
+            ShapeKind::Polygon => {
+                let vertices = o.vertices.as_deref().unwrap_or_default();
+                let corners = vertices
+                    .iter()
+                    .map(|&v| validate::vec3("vertices", v))
+                    .collect::<Result<Vec<_>>>()?;
+                check_polygon(&corners)?;
+                shapes::polygon(&corners)
+            }
+            ShapeKind::Quad => shapes::quad(),
+            ShapeKind::Box => shapes::cube(),
+            ShapeKind::Sphere => {
+                ensure!(resolution >= 4, "a sphere needs a resolution of at least 4");
+                shapes::sphere(resolution, smooth)
+            }
+            ShapeKind::Cylinder => {
+                ensure!(resolution >= 3, "a cylinder needs a resolution of at least 3");
+                shapes::cylinder(resolution, o.caps.unwrap_or(true), smooth)
+            }
+        };
+        let material_name = o
+            .material
+            .as_deref()
+            .ok_or_else(|| anyhow!("{name}: a {:?} needs a `material`", o.shape))?;
+        let material = self.material(material_name)?;
+        let object = self.push_object(name, o);
+        for mut face in faces {
+            transform::apply(&m, &mut face);
+            self.push_polygon(face, material, object);
+        }
+        Ok(())
+    }
+
+    fn add_obj(&mut self, name: &str, o: &ObjectFile, m: &glam::DMat4, res: &dyn Resources) -> Result<()> {
+        let path = o.file.as_deref().unwrap_or_default();
+        let model = obj::load(res, Path::new(path), o.smooth.unwrap_or(true))?;
+        self.warnings.extend(model.warnings);
+        let forced = o.material.as_deref().map(|n| self.material(n)).transpose()?;
+        for mtl in &model.materials {
+            if !self.material_index.contains_key(&mtl.name) {
+                self.add_material(materials::from_mtl(mtl)?);
+            }
+        }
+        let mut objects: HashMap<String, usize> = HashMap::new();
+        for ((mut face, material), part) in model
+            .faces
+            .into_iter()
+            .zip(model.face_materials)
+            .zip(model.face_objects)
+        {
+            let material = match (forced, material) {
+                (Some(m), _) => m,
+                (None, Some(n)) => self.material(&n)?,
+                (None, None) => bail!("{path}: object {part} has no material (usemtl) and the scene gives none"),
+            };
+            let object = match objects.get(&part) {
+                Some(&k) => k,
+                None => {
+                    let k = self.push_object(format!("{name}/{part}"), o);
+                    objects.insert(part, k);
+                    k
+                }
+            };
+            transform::apply(m, &mut face);
+            self.push_polygon(face, material, object);
+        }
+        Ok(())
+    }
+
+    fn push_object(&mut self, name: String, o: &ObjectFile) -> usize {
+        self.objects.push(Object {
+            name,
+            shading: o.shading,
+        });
+        self.objects.len() - 1
+    }
+
+    fn push_polygon(&mut self, vertices: Vec<super::Vertex>, material: usize, object: usize) {
+        let positions: Vec<DVec3> = vertices.iter().map(|v| v.position).collect();
+        let normal = newell_normal(&positions).normalize_or_zero();
+        if normal == DVec3::ZERO {
+            self.warnings.push(format!(
+                "{}: a polygon of zero area was dropped",
+                self.objects[object].name
+            ));
+            return;
+        }
+        self.polygons.push(Polygon {
+            vertices,
+            normal,
+            material,
+            object,
+        });
+    }
+
+    /// A point light is returned; an area light becomes an emissive polygon (and so
+    /// a light, through `area_lights`).
+    fn add_light(&mut self, index: usize, light: &LightFile) -> Result<Option<Light>> {
+        match light {
+            LightFile::Point {
+                position,
+                intensity,
+            } => Ok(Some(Light::Point(PointLight {
+                position: validate::vec3("position", *position)?,
+                intensity: validate::colour("intensity", *intensity)?,
+            }))),
+            LightFile::Area { vertices, radiance } => {
+                let corners = vertices
+                    .iter()
+                    .map(|&v| validate::vec3("vertices", v))
+                    .collect::<Result<Vec<_>>>()?;
+                check_polygon(&corners)?;
+                let name = format!("area light {index}");
+                let material = self.add_material(Material {
+                    name: name.clone(),
+                    diffuse: Vec3::ZERO,
+                    specular: Vec3::ZERO,
+                    exponent: 1.0,
+                    emission: validate::colour("radiance", *radiance)?,
+                });
+                self.objects.push(Object {
+                    name,
+                    shading: None,
+                });
+                let object = self.objects.len() - 1;
+                for face in shapes::polygon(&corners) {
+                    self.push_polygon(face, material, object);
+                }
+                Ok(None)
+            }
+        }
+    }
+
+    /// Every emissive polygon is a one-sided Lambertian area light.
+    fn area_lights(&self) -> Vec<Light> {
+        self.polygons
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| self.materials[p.material].is_emitter())
+            .map(|(index, p)| {
+                Light::Area(AreaLight {
+                    vertices: p.positions().collect(),
+                    normal: p.normal,
+                    radiance: self.materials[p.material].emission,
+                    polygon: index,
+                })
+            })
+            .collect()
+    }
+}
+
+fn check_polygon(corners: &[DVec3]) -> Result<()> {
+    ensure!(corners.len() >= 3, "a polygon needs at least 3 vertices");
+    ensure!(area(corners) > 0.0, "the polygon has zero area");
+    ensure!(
+        non_planarity(corners) < 1e-6,
+        "the polygon is not planar (a vertex lies {:.2e} of its size off its plane)",
+        non_planarity(corners)
+    );
+    Ok(())
+}
+
+/// Keys that do not apply to the object's shape are errors, like unknown keys.
+fn check_keys(o: &ObjectFile) -> Result<()> {
+    use ShapeKind::*;
+    let given = [
+        ("file", o.file.is_some(), &[Obj][..]),
+        ("vertices", o.vertices.is_some(), &[Polygon][..]),
+        ("resolution", o.resolution.is_some(), &[Sphere, Cylinder][..]),
+        ("caps", o.caps.is_some(), &[Cylinder][..]),
+        ("smooth", o.smooth.is_some(), &[Obj, Sphere, Cylinder][..]),
+    ];
+    for (key, present, shapes) in given {
+        if present && !shapes.contains(&o.shape) {
+            bail!("key `{key}` does not apply to shape {:?}", o.shape);
+        }
+        if !present && key == "file" && o.shape == Obj {
+            bail!("shape obj needs a `file`");
+        }
+        if !present && key == "vertices" && o.shape == Polygon {
+            bail!("shape polygon needs `vertices`");
+        }
+    }
+    Ok(())
+}

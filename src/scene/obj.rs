@@ -1,0 +1,135 @@
+//! Wavefront OBJ + MTL loading through tobj. Every face stays a polygon and keeps the
+//! material of its group; faces that are not planar are split into a fan
+//! (v0 v1 v2) + (v0 v2 v3) + …, and faces of zero area are dropped with a warning.
+
+use super::Vertex;
+use super::resources::Resources;
+use super::shapes::Faces;
+use crate::geometry::polygon::{area, newell_normal, non_planarity};
+use anyhow::{Context, Result, anyhow};
+use glam::{DVec2, DVec3};
+use std::io::BufReader;
+use std::path::Path;
+
+/// Relative distance from a face's plane above which a face counts as non-planar.
+const PLANARITY_TOLERANCE: f64 = 1e-9;
+
+/// One OBJ model: its faces with, per face, the name of its MTL material.
+pub struct ObjModel {
+    pub faces: Faces,
+    pub face_materials: Vec<Option<String>>,
+    /// The OBJ object (`o`/`g`) each face belongs to.
+    pub face_objects: Vec<String>,
+    pub materials: Vec<tobj::Material>,
+    pub warnings: Vec<String>,
+}
+
+pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjModel> {
+    let bytes = resources.read(path)?;
+    let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
+    let options = tobj::LoadOptions {
+        single_index: false,
+        triangulate: false,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let (models, materials) =
+        tobj::load_obj_buf(&mut BufReader::new(bytes.as_slice()), &options, |mtl| {
+            let data = resources
+                .read(&dir.join(mtl))
+                .map_err(|_| tobj::LoadError::OpenFileFailed)?;
+            tobj::load_mtl_buf(&mut BufReader::new(data.as_slice()))
+        })
+        .map_err(|e| anyhow!("{}: {e}", path.display()))?;
+    let materials = materials.with_context(|| format!("{}: its MTL file", path.display()))?;
+
+    let mut out = ObjModel {
+        faces: Vec::new(),
+        face_materials: Vec::new(),
+        face_objects: Vec::new(),
+        materials,
+        warnings: Vec::new(),
+    };
+    for model in &models {
+        let mesh = &model.mesh;
+        let material = mesh.material_id.map(|m| out.materials[m].name.clone());
+        let arities: Vec<usize> = if mesh.face_arities.is_empty() {
+            vec![3; mesh.indices.len() / 3]
+        } else {
+            mesh.face_arities.iter().map(|&a| a as usize).collect()
+        };
+        let mut start = 0;
+        for arity in arities {
+            let face: Vec<Vertex> = (start..start + arity)
+                .map(|k| corner(mesh, k, smooth))
+                .collect();
+            start += arity;
+            for polygon in planar_pieces(face) {
+                let positions: Vec<DVec3> = polygon.iter().map(|v| v.position).collect();
+                if !(area(&positions) > 0.0) {
+                    out.warnings.push(format!(
+                        "{}: object {}: a face of zero area was dropped",
+                        path.display(),
+                        model.name
+                    ));
+                    continue;
+                }
+                out.faces.push(polygon);
+                out.face_materials.push(material.clone());
+                out.face_objects.push(model.name.clone());
+            }
+        }
+    }
+    Ok(out)
+}
+
+fn corner(mesh: &tobj::Mesh, k: usize, smooth: bool) -> Vertex {
+    let p = mesh.indices[k] as usize * 3;
+    let position = DVec3::new(mesh.positions[p], mesh.positions[p + 1], mesh.positions[p + 2]);
+    let normal = match mesh.normal_indices.get(k) {
+        Some(&n) if smooth => {
+            let n = n as usize * 3;
+            DVec3::new(mesh.normals[n], mesh.normals[n + 1], mesh.normals[n + 2]).normalize_or_zero()
+        }
+        _ => DVec3::ZERO,
+    };
+    let uv = match mesh.texcoord_indices.get(k) {
+        Some(&t) => {
+            let t = t as usize * 2;
+            DVec2::new(mesh.texcoords[t], mesh.texcoords[t + 1])
+        }
+        None => DVec2::ZERO,
+    };
+    Vertex {
+        position,
+        normal,
+        uv,
+    }
+}
+
+/// The face itself when planar, else its fan triangulation. Vertices without a
+/// normal of their own get the piece's face normal.
+fn planar_pieces(face: Vec<Vertex>) -> Vec<Vec<Vertex>> {
+    let positions: Vec<DVec3> = face.iter().map(|v| v.position).collect();
+    let pieces = if face.len() > 3 && non_planarity(&positions) > PLANARITY_TOLERANCE {
+        (1..face.len() - 1)
+            .map(|i| vec![face[0], face[i], face[i + 1]])
+            .collect()
+    } else {
+        vec![face]
+    };
+    pieces
+        .into_iter()
+        .map(|mut piece| {
+            let p: Vec<DVec3> = piece.iter().map(|v| v.position).collect();
+            let n = newell_normal(&p).normalize_or_zero();
+            for v in &mut piece {
+                if v.normal == DVec3::ZERO {
+                    v.normal = n;
+                }
+            }
+            piece
+        })
+        .collect()
+}

@@ -1,0 +1,69 @@
+//! Where a scene's files come from: a directory on disk (a user's scene file) or the
+//! catalogue embedded in the binary. Paths in a scene are relative to the scene.
+
+use anyhow::{Context, Result, anyhow};
+use include_dir::Dir;
+use std::path::{Component, Path, PathBuf};
+
+pub trait Resources: Sync {
+    /// The bytes of the file at `path`, relative to the scene.
+    fn read(&self, path: &Path) -> Result<Vec<u8>>;
+}
+
+/// Files on disk, relative to a base directory.
+pub struct Directory(pub PathBuf);
+
+impl Resources for Directory {
+    fn read(&self, path: &Path) -> Result<Vec<u8>> {
+        let full = self.0.join(path);
+        std::fs::read(&full).with_context(|| format!("cannot read {}", full.display()))
+    }
+}
+
+/// Files embedded in the binary at build time.
+pub struct Embedded(pub &'static Dir<'static>);
+
+impl Resources for Embedded {
+    fn read(&self, path: &Path) -> Result<Vec<u8>> {
+        let normal = normalise(path);
+        self.0
+            .get_file(&normal)
+            .map(|f| f.contents().to_vec())
+            .ok_or_else(|| anyhow!("the catalogue has no file {}", normal.display()))
+    }
+}
+
+/// Resolves `.` and `..` without touching the file system (embedded paths have no
+/// file system to ask).
+pub fn normalise(path: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for c in path.components() {
+        match c {
+            Component::ParentDir => {
+                out.pop();
+            }
+            Component::CurDir => {}
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+/// The first of several sources that has the file (a user's scene that extends a
+/// catalogue entry reads its own files and the catalogue's).
+pub struct Layered(pub Vec<Box<dyn Resources>>);
+
+impl Resources for Layered {
+    fn read(&self, path: &Path) -> Result<Vec<u8>> {
+        let mut first_error = None;
+        for source in &self.0 {
+            match source.read(path) {
+                Ok(bytes) => return Ok(bytes),
+                Err(e) => {
+                    first_error.get_or_insert(e);
+                }
+            }
+        }
+        Err(first_error.unwrap_or_else(|| anyhow!("no source for {}", path.display())))
+    }
+}

@@ -1,0 +1,137 @@
+//! Scene tables before they become scenes: parsing with positions in errors, merging
+//! a base table under another (catalogue `extends`), and `--set key=value` overrides.
+
+use anyhow::{Result, anyhow, bail};
+use toml::{Table, Value};
+
+/// Parses TOML text; an error names `origin:line:column`.
+pub fn parse(text: &str, origin: &str) -> Result<Table> {
+    text.parse::<Table>().map_err(|e| {
+        let message = e.message().trim().replace('\n', " ");
+        match e.span() {
+            Some(span) => {
+                let before = &text[..span.start.min(text.len())];
+                let line = before.matches('\n').count() + 1;
+                let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+                anyhow!("{origin}:{line}:{column}: {message}")
+            }
+            None => anyhow!("{origin}: {message}"),
+        }
+    })
+}
+
+/// Puts `over` on top of `base`: tables merge key by key, anything else (arrays
+/// included) is replaced whole.
+pub fn merge(base: &mut Table, over: Table) {
+    for (key, value) in over {
+        match (base.get_mut(&key), value) {
+            (Some(Value::Table(b)), Value::Table(o)) => merge(b, o),
+            (_, value) => {
+                base.insert(key, value);
+            }
+        }
+    }
+}
+
+/// Applies `key.path=value`. The value is read as TOML (`64`, `[1, 2, 3]`, `"x"`);
+/// a bare word that is not TOML is taken as a string. Array elements are named by
+/// their index (`objects.0.material=red`).
+pub fn set(table: &mut Table, assignment: &str) -> Result<()> {
+    let (path, raw) = assignment
+        .split_once('=')
+        .ok_or_else(|| anyhow!("--set {assignment}: expected key=value"))?;
+    let keys: Vec<&str> = path.trim().split('.').collect();
+    if keys.iter().any(|k| k.is_empty()) {
+        bail!("--set {assignment}: the key `{path}` has an empty part");
+    }
+    let value = parse_value(raw.trim());
+    let mut slot = Slot::Table(table);
+    for (depth, key) in keys.iter().enumerate() {
+        let last = depth + 1 == keys.len();
+        slot = match slot {
+            Slot::Table(t) if last => {
+                t.insert(key.to_string(), value);
+                return Ok(());
+            }
+            Slot::Table(t) => Slot::from(
+                t.entry(key.to_string())
+                    .or_insert_with(|| Value::Table(Table::new())),
+            ),
+            Slot::Array(a) => {
+                let index: usize = key
+                    .parse()
+                    .map_err(|_| anyhow!("--set {assignment}: `{key}` must be an array index"))?;
+                let len = a.len();
+                let element = a.get_mut(index).ok_or_else(|| {
+                    anyhow!("--set {assignment}: index {index} is past the end ({len} elements)")
+                })?;
+                if last {
+                    *element = value;
+                    return Ok(());
+                }
+                Slot::from(element)
+            }
+            Slot::Leaf => bail!("--set {assignment}: `{key}` is inside a value that is not a table"),
+        };
+    }
+    unreachable!("the loop returns at the last key")
+}
+
+enum Slot<'a> {
+    Table(&'a mut Table),
+    Array(&'a mut Vec<Value>),
+    Leaf,
+}
+
+impl<'a> From<&'a mut Value> for Slot<'a> {
+    fn from(v: &'a mut Value) -> Self {
+        match v {
+            Value::Table(t) => Slot::Table(t),
+            Value::Array(a) => Slot::Array(a),
+            _ => Slot::Leaf,
+        }
+    }
+}
+
+fn parse_value(raw: &str) -> Value {
+    format!("v = {raw}")
+        .parse::<Table>()
+        .ok()
+        .and_then(|mut t| t.remove("v"))
+        .unwrap_or_else(|| Value::String(raw.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_errors_name_line_and_column() {
+        let err = parse("a = 1\nb = = 2\n", "x.toml").unwrap_err().to_string();
+        assert!(err.starts_with("x.toml:2:"), "{err}");
+        assert!(!err.contains('\n'));
+    }
+
+    #[test]
+    fn set_reaches_tables_and_arrays() {
+        let mut t = parse("[camera]\nwidth = 5\n[[objects]]\nmaterial = 'a'\n", "t").unwrap();
+        set(&mut t, "camera.width=64").unwrap();
+        set(&mut t, "objects.0.material=red").unwrap();
+        set(&mut t, "render.exposure=2.5").unwrap();
+        assert_eq!(t["camera"]["width"].as_integer(), Some(64));
+        assert_eq!(t["objects"][0]["material"].as_str(), Some("red"));
+        assert_eq!(t["render"]["exposure"].as_float(), Some(2.5));
+        assert!(set(&mut t, "objects.3.material=red").is_err());
+        assert!(set(&mut t, "camera.width.x=1").is_err());
+        assert!(set(&mut t, "nothing").is_err());
+    }
+
+    #[test]
+    fn merge_replaces_arrays_and_merges_tables() {
+        let mut base = parse("[a]\nx = 1\ny = 2\nlist = [1, 2]\n", "b").unwrap();
+        merge(&mut base, parse("[a]\ny = 3\nlist = [9]\n", "o").unwrap());
+        assert_eq!(base["a"]["x"].as_integer(), Some(1));
+        assert_eq!(base["a"]["y"].as_integer(), Some(3));
+        assert_eq!(base["a"]["list"].as_array().unwrap().len(), 1);
+    }
+}

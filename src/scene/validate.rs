@@ -1,0 +1,76 @@
+//! Checks on values a user writes: finite vectors, sane sizes, a usable camera.
+
+use super::Camera;
+use super::file::{CameraFile, Vec3File};
+use anyhow::{Result, bail, ensure};
+use glam::DVec3;
+
+/// Largest width or height accepted.
+pub const MAX_SIDE: u32 = 16_384;
+/// Largest number of samples (pixels × supersample²) in one render; each costs
+/// about 80 bytes in the visible-surface buffer.
+pub const MAX_SAMPLES: u64 = 1 << 26;
+
+pub fn vec3(what: &str, v: Vec3File) -> Result<DVec3> {
+    ensure!(
+        v.iter().all(|x| x.is_finite()),
+        "{what} must be finite numbers, got {v:?}"
+    );
+    Ok(DVec3::from(v))
+}
+
+pub fn colour(what: &str, v: Vec3File) -> Result<glam::Vec3> {
+    let c = vec3(what, v)?;
+    ensure!(c.min_element() >= 0.0, "{what} must not be negative, got {v:?}");
+    Ok(c.as_vec3())
+}
+
+pub fn image_size(width: u32, height: u32, supersample: u32) -> Result<()> {
+    for (name, side) in [("width", width), ("height", height)] {
+        ensure!(
+            (1..=MAX_SIDE).contains(&side),
+            "image {name} must be between 1 and {MAX_SIDE}, got {side}"
+        );
+    }
+    ensure!(
+        (1..=16).contains(&supersample),
+        "supersample must be between 1 and 16, got {supersample}"
+    );
+    let samples = width as u64 * height as u64 * (supersample as u64).pow(2);
+    ensure!(
+        samples <= MAX_SAMPLES,
+        "{width}x{height} with supersample {supersample} is {samples} samples, more than the {MAX_SAMPLES} one render takes"
+    );
+    Ok(())
+}
+
+pub fn camera(c: &CameraFile) -> Result<Camera> {
+    let eye = vec3("camera.eye", c.eye)?;
+    let look_at = vec3("camera.look_at", c.look_at)?;
+    let up = vec3("camera.up", c.up)?;
+    let view = look_at - eye;
+    ensure!(view.length() > 0.0, "camera.eye and camera.look_at are the same point");
+    ensure!(up.length() > 0.0, "camera.up must not be zero");
+    if view.normalize().cross(up.normalize()).length() < 1e-9 {
+        bail!("camera.up is parallel to the view direction (eye to look_at)");
+    }
+    ensure!(
+        c.fov_y.is_finite() && c.fov_y > 0.0 && c.fov_y < 180.0,
+        "camera.fov_y must be strictly between 0 and 180 degrees, got {}",
+        c.fov_y
+    );
+    let near = c.near.unwrap_or(1e-3 * view.length());
+    ensure!(
+        near.is_finite() && near > 0.0,
+        "camera.near must be positive, got {near}"
+    );
+    Ok(Camera {
+        eye,
+        look_at,
+        up,
+        fov_y: c.fov_y,
+        width: c.width,
+        height: c.height,
+        near,
+    })
+}

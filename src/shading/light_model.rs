@@ -1,0 +1,79 @@
+//! The light model: how much radiance one light sends towards the eye from a point.
+//!
+//! Diffuse: Lambert, radiance ρ/π × irradiance. Specular: Phong's cosine lobe
+//! (B. T. Phong, "Illumination for computer generated pictures", CACM 18(6), 1975) in
+//! its energy-normalised form f = k_s (e + 2)/(2π) cosᵉ α (R. R. Lewis, 1994), α the
+//! angle between the mirror direction of the light and the eye, so a material never
+//! reflects more than it receives and images compare with a physically based
+//! renderer's. Point lights: irradiance I cos θ / r². Area lights: the diffuse part
+//! is exact (Lambert's contour formula); the specular part treats the emitter as a
+//! point at its centroid with intensity L A cos θ_light, an approximation.
+
+use super::lambert_contour::projected_solid_angle;
+use crate::geometry::polygon::{area, centroid};
+use crate::scene::{AreaLight, Light, Material};
+use glam::{DVec3, Vec3};
+use std::f32::consts::PI;
+
+/// A surface point being shaded: position, unit shading normal on the eye's side,
+/// unit direction to the eye.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfacePoint {
+    pub position: DVec3,
+    pub normal: DVec3,
+    pub to_eye: DVec3,
+}
+
+/// Radiance towards the eye due to `light`, ignoring anything in between.
+pub fn reflected(point: &SurfacePoint, material: &Material, light: &Light) -> Vec3 {
+    match light {
+        Light::Point(l) => {
+            let d = l.position - point.position;
+            point_contribution(point, material, d, l.intensity)
+        }
+        Light::Area(l) => area_contribution(point, material, l),
+    }
+}
+
+/// Light from a point source at offset `d` with intensity `intensity`.
+fn point_contribution(point: &SurfacePoint, material: &Material, d: DVec3, intensity: Vec3) -> Vec3 {
+    let r2 = d.length_squared();
+    let l = d / r2.sqrt();
+    let cos = point.normal.dot(l);
+    if !(cos > 0.0) {
+        return Vec3::ZERO;
+    }
+    let irradiance = intensity * (cos / r2) as f32;
+    (material.diffuse / PI + specular_brdf(point, material, l)) * irradiance
+}
+
+fn specular_brdf(point: &SurfacePoint, material: &Material, l: DVec3) -> Vec3 {
+    if material.specular == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    let mirror = 2.0 * point.normal.dot(l) * point.normal - l;
+    let cos_alpha = mirror.dot(point.to_eye).max(0.0) as f32;
+    let e = material.exponent;
+    material.specular * (e + 2.0) / (2.0 * PI) * cos_alpha.powf(e)
+}
+
+fn area_contribution(point: &SurfacePoint, material: &Material, light: &AreaLight) -> Vec3 {
+    let c = centroid(&light.vertices);
+    // One-sided emitter: points behind its plane get nothing.
+    if (point.position - c).dot(light.normal) <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let phi = projected_solid_angle(point.position, point.normal, &light.vertices) as f32;
+    let mut radiance = material.diffuse / PI * light.radiance * phi;
+    if material.specular != Vec3::ZERO {
+        let d = c - point.position;
+        let cos_light = (-d.normalize()).dot(light.normal).max(0.0);
+        let intensity = light.radiance * (area(&light.vertices) * cos_light) as f32;
+        let cos = point.normal.dot(d.normalize());
+        if cos > 0.0 {
+            let irradiance = intensity * (cos / d.length_squared()) as f32;
+            radiance += specular_brdf(point, material, d.normalize()) * irradiance;
+        }
+    }
+    radiance
+}
