@@ -178,7 +178,7 @@ fn resolve_span(
     row: &mut [Sample],
 ) {
     if let [only] = inside {
-        (i0..=i1).for_each(|i| row[i as usize] = sample(only, i, y, active, polygons));
+        fill_run(only, i0, i1, y, active, polygons, row);
         return;
     }
     let mut pending = vec![(i0, i1)];
@@ -186,7 +186,7 @@ fn resolve_span(
         let left = nearest(inside, a as f64 + 0.5, y, polygons);
         let right = nearest(inside, b as f64 + 0.5, y, polygons);
         if left.polygon == right.polygon || a == b {
-            (a..=b).for_each(|i| row[i as usize] = sample(&left, i, y, active, polygons));
+            fill_run(&left, a, b, y, active, polygons, row);
             continue;
         }
         // Split where the two winners' depths cross along the row.
@@ -219,25 +219,47 @@ fn nearest(inside: &[Inside], x: f64, y: f64, polygons: &[ScreenPolygon]) -> Ins
     best
 }
 
-/// The sample of polygon `c` at pixel i of row y: attributes interpolated
-/// perspective-correctly between its own two crossings, depth from its plane.
-fn sample(c: &Inside, i: i64, y: f64, active: &[(u32, Edge)], polygons: &[ScreenPolygon]) -> Sample {
+/// Writes samples i0..=i1 of row y with polygon `c`: ζ and the attributes over z
+/// start at i0 (interpolated between the polygon's own crossings) and step by a
+/// constant increment per pixel, as in Watkins; each sample divides by ζ for the
+/// perspective-correct value and takes its depth from the polygon's plane.
+fn fill_run(
+    c: &Inside,
+    i0: i64,
+    i1: i64,
+    y: f64,
+    active: &[(u32, Edge)],
+    polygons: &[ScreenPolygon],
+    row: &mut [Sample],
+) {
     let (l, r) = (&active[c.left].1, &active[c.right].1);
     let (xl, xr) = (l.x as f64 / FIXED_ONE as f64, r.x as f64 / FIXED_ONE as f64);
-    let x = i as f64 + 0.5;
-    let t = if xr > xl { (x - xl) / (xr - xl) } else { 0.0 };
-    let zeta = l.zeta + (r.zeta - l.zeta) * t;
+    let per_pixel = if xr > xl { 1.0 / (xr - xl) } else { 0.0 };
+    let t = (i0 as f64 + 0.5 - xl) * per_pixel;
+    let dzeta = (r.zeta - l.zeta) * per_pixel;
+    let mut zeta = l.zeta + (r.zeta - l.zeta) * t;
     let mut a = [0.0; ATTRIBUTES];
+    let mut da = [0.0; ATTRIBUTES];
     for k in 0..ATTRIBUTES {
-        a[k] = (l.attributes[k] + (r.attributes[k] - l.attributes[k]) * t) / zeta;
+        da[k] = (r.attributes[k] - l.attributes[k]) * per_pixel;
+        a[k] = l.attributes[k] + (r.attributes[k] - l.attributes[k]) * t;
     }
     let polygon = &polygons[c.polygon as usize];
-    Sample {
-        polygon: polygon.id,
-        depth: 1.0 / polygon.plane.zeta(x, y),
-        position: DVec3::new(a[0], a[1], a[2]),
-        normal: DVec3::new(a[3], a[4], a[5]).normalize_or_zero().as_vec3(),
-        uv: Vec2::new(a[6] as f32, a[7] as f32),
-        color: Vec3::new(a[8] as f32, a[9] as f32, a[10] as f32),
+    let plane = polygon.plane;
+    for i in i0..=i1 {
+        let z = 1.0 / zeta;
+        let x = i as f64 + 0.5;
+        row[i as usize] = Sample {
+            polygon: polygon.id,
+            depth: 1.0 / plane.zeta(x, y),
+            position: DVec3::new(a[0], a[1], a[2]) * z,
+            normal: DVec3::new(a[3], a[4], a[5]).normalize_or_zero().as_vec3(),
+            uv: Vec2::new((a[6] * z) as f32, (a[7] * z) as f32),
+            color: Vec3::new((a[8] * z) as f32, (a[9] * z) as f32, (a[10] * z) as f32),
+        };
+        zeta += dzeta;
+        for k in 0..ATTRIBUTES {
+            a[k] += da[k];
+        }
     }
 }

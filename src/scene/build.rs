@@ -8,7 +8,7 @@ use super::{
     AreaLight, Light, Material, Object, PointLight, Polygon, RenderSettings, Scene, materials,
     obj, transform, validate,
 };
-use crate::geometry::polygon::{area, newell_normal, non_planarity};
+use crate::geometry::polygon::{area, centroid, newell_normal, non_planarity};
 use anyhow::{Context, Result, anyhow, bail, ensure};
 use glam::{DVec3, Vec3};
 use std::collections::HashMap;
@@ -237,8 +237,11 @@ impl Builder {
             .enumerate()
             .filter(|(_, p)| self.materials[p.material].is_emitter())
             .map(|(index, p)| {
+                let vertices: Vec<DVec3> = p.positions().collect();
                 Light::Area(AreaLight {
-                    vertices: p.positions().collect(),
+                    centre: centroid(&vertices),
+                    area: area(&vertices),
+                    vertices,
                     normal: p.normal,
                     radiance: self.materials[p.material].emission,
                     polygon: index,

@@ -126,6 +126,9 @@ pub struct PointLight {
 pub struct AreaLight {
     pub vertices: Vec<DVec3>,
     pub normal: DVec3,
+    /// Centroid of the vertices and area of the polygon.
+    pub centre: DVec3,
+    pub area: f64,
     pub radiance: Vec3,
     pub polygon: usize,
 }

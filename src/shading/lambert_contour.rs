@@ -30,15 +30,19 @@ pub fn projected_solid_angle(p: DVec3, n: DVec3, polygon: &[DVec3]) -> f64 {
     if vertices.len() < 3 {
         return 0.0;
     }
-    let directions: Vec<DVec3> = vertices.iter().map(|v| (*v - p).normalize_or_zero()).collect();
+    // θᵢ = atan2(|rᵢ × rᵢ₊₁|, rᵢ · rᵢ₊₁) needs no unit vectors: both arguments scale
+    // by |rᵢ| |rᵢ₊₁|, and Γᵢ is the normalised cross product either way.
+    let first = vertices[0] - p;
+    let mut a = first;
     let mut sum = 0.0;
-    for (i, a) in directions.iter().enumerate() {
-        let b = directions[(i + 1) % directions.len()];
+    for k in 1..=vertices.len() {
+        let b = vertices.get(k).map_or(first, |v| *v - p);
         let cross = a.cross(b);
         let sine = cross.length();
         if sine > 0.0 {
             sum += sine.atan2(a.dot(b)) * cross.dot(n) / sine;
         }
+        a = b;
     }
     0.5 * sum.abs()
 }

@@ -10,7 +10,6 @@
 //! point at its centroid with intensity L A cos θ_light, an approximation.
 
 use super::lambert_contour::projected_solid_angle;
-use crate::geometry::polygon::{area, centroid};
 use crate::scene::{AreaLight, Light, Material};
 use glam::{DVec3, Vec3};
 use std::f32::consts::PI;
@@ -58,7 +57,7 @@ fn specular_brdf(point: &SurfacePoint, material: &Material, l: DVec3) -> Vec3 {
 }
 
 fn area_contribution(point: &SurfacePoint, material: &Material, light: &AreaLight) -> Vec3 {
-    let c = centroid(&light.vertices);
+    let c = light.centre;
     // One-sided emitter: points behind its plane get nothing.
     if (point.position - c).dot(light.normal) <= 0.0 {
         return Vec3::ZERO;
@@ -68,7 +67,7 @@ fn area_contribution(point: &SurfacePoint, material: &Material, light: &AreaLigh
     if material.specular != Vec3::ZERO {
         let d = c - point.position;
         let cos_light = (-d.normalize()).dot(light.normal).max(0.0);
-        let intensity = light.radiance * (area(&light.vertices) * cos_light) as f32;
+        let intensity = light.radiance * (light.area * cos_light) as f32;
         let cos = point.normal.dot(d.normalize());
         if cos > 0.0 {
             let irradiance = intensity * (cos / d.length_squared()) as f32;
