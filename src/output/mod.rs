@@ -94,6 +94,14 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
         .with_context(|| format!("cannot write in {}", dir.display()))?;
     file.write_all(bytes)
         .with_context(|| format!("cannot write {}", path.display()))?;
+    // A temporary file is private; the image is an ordinary file.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        file.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(0o644))
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
     file.persist(path)
         .with_context(|| format!("cannot write {}", path.display()))?;
     Ok(())
@@ -107,6 +115,11 @@ pub fn load(path: &Path) -> Result<Image> {
         Format::Pfm => pfm::decode(&bytes),
     }
     .with_context(|| format!("{}", path.display()))
+}
+
+/// Decodes PNG bytes (sRGB to linear).
+pub fn load_png_bytes(bytes: &[u8]) -> Result<Image> {
+    png::decode(bytes)
 }
 
 /// sRGB transfer function of a linear value in [0, 1].

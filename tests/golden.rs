@@ -1,0 +1,159 @@
+//! Golden images: every catalogue entry rendered at its test size must match
+//! golden/<id>.png. A pixel fails when a channel differs by more than 1/255; the
+//! test asserts no failing pixel. On failure, golden-failures/<id>.png shows
+//! expected | difference (×8) | actual.
+//!
+//! Regenerate: `LUMIERE_UPDATE_GOLDEN=1 cargo test --release --test golden`. It
+//! rewrites the images and still fails, so that someone looks at each before
+//! committing it.
+
+use libtest_mimic::{Arguments, Failed, Trial};
+use lumiere::output::{self, Image};
+use lumiere::{catalogue, load_scene};
+use std::path::{Path, PathBuf};
+
+/// Largest per-channel difference (in 1/255 steps) that still counts as equal.
+const CHANNEL_TOLERANCE: u8 = 1;
+
+fn main() {
+    let args = Arguments::from_args();
+    let mut trials: Vec<Trial> = catalogue::ids()
+        .into_iter()
+        .map(|id| Trial::test(format!("golden::{id}"), move || check(&id)))
+        .collect();
+    trials.push(Trial::test("golden::every_golden_has_an_entry", orphans));
+    trials.push(Trial::test(
+        "golden::same_bytes_with_one_thread_and_four",
+        deterministic,
+    ));
+    libtest_mimic::run(&args, trials).exit();
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn render_entry(id: &str) -> Result<(Image, f32), Failed> {
+    let a = catalogue::entry(id).map_err(|e| format!("{e:#}"))?.algorithm;
+    let sets = [
+        format!("camera.width={}", a.test_width),
+        format!("camera.height={}", a.test_height),
+    ];
+    let scene = load_scene(id, &sets).map_err(|e| format!("{e:#}"))?;
+    Ok((lumiere::render(&scene), scene.render.exposure))
+}
+
+fn check(id: &str) -> Result<(), Failed> {
+    let (image, exposure) = render_entry(id)?;
+    let actual = output::encode(&image, output::Format::Png, exposure).map_err(|e| e.to_string())?;
+    let golden = root().join("golden").join(format!("{id}.png"));
+    let regenerate = format!("LUMIERE_UPDATE_GOLDEN=1 cargo test --release --test golden -- {id}");
+    if std::env::var_os("LUMIERE_UPDATE_GOLDEN").is_some() {
+        output::write_atomically(&golden, &actual).map_err(|e| e.to_string())?;
+        return Err(format!("{id}: golden rewritten at {}; look at it, then run the tests again", golden.display()).into());
+    }
+    if !golden.exists() {
+        return Err(format!("{id}: no golden image at {}; create it with `{regenerate}`", golden.display()).into());
+    }
+    let expected = output::load(&golden).map_err(|e| format!("{e:#}"))?;
+    let actual = output::load_png_bytes(&actual).map_err(|e| format!("{e:#}"))?;
+    if (expected.width, expected.height) != (actual.width, actual.height) {
+        return Err(format!(
+            "{id}: golden is {}x{}, render is {}x{}; regenerate with `{regenerate}`",
+            expected.width, expected.height, actual.width, actual.height
+        )
+        .into());
+    }
+    let failing = failing_pixels(&expected, &actual);
+    if failing == 0 {
+        return Ok(());
+    }
+    let comparison = output::compare(&expected, &actual, 1.0).map_err(|e| e.to_string())?;
+    let report = write_failure(id, &expected, &actual);
+    Err(format!(
+        "{id}: {failing} pixels differ by more than {CHANNEL_TOLERANCE}/255 (max {}/255, rmse {:.5}); see {}; if the change is intended, regenerate with `{regenerate}`",
+        comparison.max_difference,
+        comparison.rmse,
+        report.display()
+    )
+    .into())
+}
+
+fn failing_pixels(a: &Image, b: &Image) -> usize {
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(p, q)| {
+            let (p, q) = (output::to_srgb8(**p, 1.0), output::to_srgb8(**q, 1.0));
+            (0..3).any(|c| p[c].abs_diff(q[c]) > CHANNEL_TOLERANCE)
+        })
+        .count()
+}
+
+/// expected | difference | actual, side by side.
+fn write_failure(id: &str, expected: &Image, actual: &Image) -> PathBuf {
+    let diff = output::difference_image(expected, actual, 1.0, 8.0);
+    let (w, h) = (expected.width, expected.height);
+    let mut pixels = Vec::with_capacity((3 * w * h) as usize);
+    for y in 0..h as usize {
+        for part in [expected, &diff, actual] {
+            pixels.extend_from_slice(&part.pixels[y * w as usize..(y + 1) * w as usize]);
+        }
+    }
+    let sheet = Image {
+        width: 3 * w,
+        height: h,
+        pixels,
+    };
+    let dir = root().join("golden-failures");
+    let path = dir.join(format!("{id}.png"));
+    let _ = std::fs::create_dir_all(&dir).and_then(|_| {
+        output::save(&sheet, &path, 1.0).map_err(std::io::Error::other)
+    });
+    path
+}
+
+fn orphans() -> Result<(), Failed> {
+    let ids = catalogue::ids();
+    let dir = root().join("golden");
+    let mut orphans = Vec::new();
+    for entry in std::fs::read_dir(&dir).map_err(|e| e.to_string())? {
+        let path = entry.map_err(|e| e.to_string())?.path();
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or_default();
+        if path.extension() == Some("png".as_ref()) && !ids.iter().any(|id| id == stem) {
+            orphans.push(Path::new(&path).display().to_string());
+        }
+    }
+    if orphans.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("golden images without a catalogue entry: {}", orphans.join(", ")).into())
+    }
+}
+
+/// The same bytes whatever the thread count: every entry's PFM (exact f32
+/// radiance) with a pool of 1 thread and a pool of 4.
+fn deterministic() -> Result<(), Failed> {
+    let render_all = |threads: usize| -> Result<Vec<Vec<u8>>, Failed> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| e.to_string())?;
+        pool.install(|| {
+            catalogue::ids()
+                .iter()
+                .map(|id| {
+                    let (image, _) = render_entry(id)?;
+                    output::encode(&image, output::Format::Pfm, 1.0).map_err(|e| Failed::from(e.to_string()))
+                })
+                .collect()
+        })
+    };
+    let (one, four) = (render_all(1)?, render_all(4)?);
+    for (id, (a, b)) in catalogue::ids().iter().zip(one.iter().zip(&four)) {
+        if a != b {
+            return Err(format!("{id}: the image differs between 1 and 4 threads").into());
+        }
+    }
+    Ok(())
+}
