@@ -1,0 +1,37 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use glam::{DVec2, DVec3};
+use lumiere::raster::{RasterVertex, ScreenPolygon, View};
+use lumiere::scene::{Camera, Vertex};
+
+/// A camera at the origin looking down −z: world (x, y, −d) is eye (x, y, d).
+pub fn origin_view(width: u32, height: u32) -> View {
+    let camera = Camera {
+        eye: DVec3::ZERO,
+        look_at: DVec3::NEG_Z,
+        up: DVec3::Y,
+        fov_y: 60.0,
+        width,
+        height,
+        near: 0.01,
+    };
+    View::new(&camera, width, height)
+}
+
+pub fn vertex(p: DVec3) -> Vertex {
+    Vertex {
+        position: p,
+        normal: DVec3::Z,
+        uv: DVec2::ZERO,
+    }
+}
+
+/// The screen polygon of world points seen by `view` (None if out of view).
+pub fn screen_polygon(view: &View, id: u32, points: &[DVec3]) -> Option<ScreenPolygon> {
+    let eye = points
+        .iter()
+        .map(|&p| RasterVertex::new(view, &vertex(p), glam::Vec3::ZERO))
+        .collect();
+    ScreenPolygon::new(view, id, eye)
+}

@@ -1,0 +1,159 @@
+//! Property tests of the rasterizer's geometric core: fill rule, clipping, depth.
+
+mod common;
+
+use common::{origin_view, screen_polygon};
+use glam::DVec3;
+use lumiere::geometry::polygon::area;
+use lumiere::geometry::sutherland_hodgman::clip;
+use lumiere::raster::covered_samples;
+use proptest::prelude::*;
+
+const W: u32 = 80;
+const H: u32 = 64;
+
+/// A jittered n × n grid of vertices over [-2, 2]² at depth 5, each cell split along a
+/// random diagonal: a triangle mesh whose outline is the grid's boundary. (Random
+/// depths per vertex would let the projected mesh fold over itself.)
+fn mesh() -> impl Strategy<Value = (usize, Vec<DVec3>, Vec<bool>)> {
+    (2usize..7).prop_flat_map(|n| {
+        let count = (n + 1) * (n + 1);
+        (
+            Just(n),
+            prop::collection::vec((-0.3..0.3f64, -0.3..0.3f64), count),
+            prop::collection::vec(any::<bool>(), n * n),
+        )
+            .prop_map(|(n, jitter, diagonals)| {
+                let cell = 4.0 / n as f64;
+                let points = jitter
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &(jx, jy))| {
+                        let (i, j) = (k % (n + 1), k / (n + 1));
+                        // Boundary vertices stay on the square's sides.
+                        let jx = if i == 0 || i == n { 0.0 } else { jx * cell };
+                        let jy = if j == 0 || j == n { 0.0 } else { jy * cell };
+                        DVec3::new(-2.0 + i as f64 * cell + jx, -2.0 + j as f64 * cell + jy, -5.0)
+                    })
+                    .collect();
+                (n, points, diagonals)
+            })
+    })
+}
+
+fn coverage(points: &[Vec<DVec3>]) -> Vec<u32> {
+    let view = origin_view(W, H);
+    let mut count = vec![0u32; (W * H) as usize];
+    for (k, p) in points.iter().enumerate() {
+        let polygon = screen_polygon(&view, k as u32, p).expect("in view");
+        for (x, y) in covered_samples(&polygon, W, H) {
+            count[(y * W + x) as usize] += 1;
+        }
+    }
+    count
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Triangles sharing edges cover every sample inside the mesh exactly once, and
+    /// none outside it: the per-sample count of the triangles equals the coverage of
+    /// the mesh's outline polygon.
+    #[test]
+    fn a_mesh_covers_each_sample_exactly_once((n, points, diagonals) in mesh()) {
+        let at = |i: usize, j: usize| points[j * (n + 1) + i];
+        let mut triangles = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                if diagonals[j * n + i] {
+                    triangles.push(vec![a, b, c]);
+                    triangles.push(vec![a, c, d]);
+                } else {
+                    triangles.push(vec![a, b, d]);
+                    triangles.push(vec![b, c, d]);
+                }
+            }
+        }
+        let mut outline: Vec<DVec3> = (0..n).map(|i| at(i, 0)).collect();
+        outline.extend((0..n).map(|j| at(n, j)));
+        outline.extend((0..n).map(|i| at(n - i, n)));
+        outline.extend((0..n).map(|j| at(0, n - j)));
+        let mesh = coverage(&triangles);
+        let inside = coverage(&[outline]);
+        prop_assert!(inside.iter().any(|&c| c == 1));
+        if let Some(k) = (0..mesh.len()).find(|&k| mesh[k] != inside[k]) {
+            prop_assert!(false, "sample ({}, {}) covered {} times, the outline {}", k as u32 % W, k as u32 / W, mesh[k], inside[k]);
+        }
+    }
+
+    /// Sutherland–Hodgman against any plane: what is kept and what is cut off add up
+    /// to the whole area, kept vertices are inside, and clipping again changes nothing.
+    #[test]
+    fn clipping_keeps_area(
+        corners in prop::collection::vec(0.0..std::f64::consts::TAU, 3..9),
+        radii in (0.5..3.0f64, 0.5..3.0f64),
+        plane in ((-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64), -2.0..2.0f64),
+    ) {
+        // A convex polygon: points of an ellipse in order of angle, tilted in 3D.
+        let mut angles = corners.clone();
+        angles.sort_by(f64::total_cmp);
+        angles.dedup();
+        prop_assume!(angles.len() >= 3);
+        let polygon: Vec<DVec3> = angles
+            .iter()
+            .map(|a| DVec3::new(radii.0 * a.cos(), radii.1 * a.sin(), 0.3 * a.cos() + 0.2 * a.sin()))
+            .collect();
+        let normal = DVec3::new(plane.0.0, plane.0.1, plane.0.2);
+        prop_assume!(normal.length() > 0.1);
+        let d = |v: &DVec3| v.dot(normal) - plane.1;
+        let kept = clip(&polygon, d);
+        let cut = clip(&polygon, |v| -d(v));
+        let measure = |p: &[DVec3]| if p.len() < 3 { 0.0 } else { area(p) };
+        prop_assert!((measure(&kept) + measure(&cut) - area(&polygon)).abs() < 1e-9 * area(&polygon));
+        prop_assert!(kept.iter().all(|v| d(v) >= -1e-9));
+        let again = clip(&kept, d);
+        prop_assert!((measure(&again) - measure(&kept)).abs() < 1e-12 * area(&polygon).max(1.0));
+    }
+
+    /// Triangles crossing the near plane: every projected vertex lies on or beyond it,
+    /// and the clipped triangle keeps exactly its area beyond the plane.
+    #[test]
+    fn near_plane_clipping_keeps_what_is_beyond(t in prop::collection::vec((-0.3..0.3f64, -0.3..0.3f64, -2.0..0.5f64), 3)) {
+        let view = origin_view(W, H);
+        let points: Vec<DVec3> = t.iter().map(|&(x, y, z)| DVec3::new(x * 0.01, y * 0.01, z)).collect();
+        let beyond = |p: &DVec3| -p.z - view.near;
+        let whole = area(&points);
+        prop_assume!(whole > 1e-9);
+        let kept = clip(&points, beyond);
+        let cut = clip(&points, |p| -beyond(p));
+        let measure = |p: &[DVec3]| if p.len() < 3 { 0.0 } else { area(p) };
+        prop_assert!((measure(&kept) + measure(&cut) - whole).abs() < 1e-9 * whole);
+        if let Some(polygon) = screen_polygon(&view, 0, &points) {
+            for v in &polygon.vertices {
+                prop_assert!(1.0 / v.zeta >= view.near * (1.0 - 1e-12));
+            }
+        }
+    }
+
+    /// The depth plane passes through every vertex exactly (ζ = 1/z at the vertex),
+    /// and a polygon covers no sample outside its bounding box.
+    #[test]
+    fn depth_is_exact_at_vertices_and_coverage_stays_in_the_box(
+        t in prop::collection::vec((-3.0..3.0f64, -3.0..3.0f64, -9.0..-2.0f64), 3)
+    ) {
+        let view = origin_view(W, H);
+        let points: Vec<DVec3> = t.iter().map(|&(x, y, z)| DVec3::new(x, y, z)).collect();
+        let Some(polygon) = screen_polygon(&view, 0, &points) else { return Ok(()); };
+        for v in &polygon.vertices {
+            let zeta = polygon.plane.zeta(v.x, v.y);
+            prop_assert!((zeta - v.zeta).abs() <= 1e-9 * v.zeta, "{zeta} vs {}", v.zeta);
+        }
+        let (x0, x1) = polygon.vertices.iter().fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v.x), b.max(v.x)));
+        let (y0, y1) = polygon.vertices.iter().fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(v.y), b.max(v.y)));
+        for (x, y) in covered_samples(&polygon, W, H) {
+            let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
+            prop_assert!(cx >= x0 - 1e-6 && cx <= x1 + 1e-6 && cy >= y0 && cy < y1);
+        }
+    }
+}
