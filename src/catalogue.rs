@@ -68,12 +68,17 @@ pub fn entry(id: &str) -> Result<Entry> {
 
 fn entry_from(id: &str, chain: &mut Vec<String>) -> Result<Entry> {
     if chain.iter().any(|c| c == id) {
-        bail!("catalogue entries extend each other in a cycle: {} -> {id}", chain.join(" -> "));
+        bail!(
+            "catalogue entries extend each other in a cycle: {} -> {id}",
+            chain.join(" -> ")
+        );
     }
     chain.push(id.to_string());
     let name = format!("{id}.toml");
     let file = ALGORITHMS.get_file(&name).ok_or_else(|| unknown(id))?;
-    let text = file.contents_utf8().ok_or_else(|| anyhow!("{name} is not UTF-8"))?;
+    let text = file
+        .contents_utf8()
+        .ok_or_else(|| anyhow!("{name} is not UTF-8"))?;
     let mut table = tables::parse(text, &format!("algorithms/{name}"))?;
     let algorithm: Algorithm = table
         .remove("algorithm")
@@ -101,7 +106,9 @@ fn unknown(id: &str) -> anyhow::Error {
         .min_by_key(|k| strsim::levenshtein(k, id))
         .filter(|k| strsim::levenshtein(k, id) <= k.len().max(id.len()) / 2);
     match nearest {
-        Some(n) => anyhow!("no catalogue entry `{id}`; did you mean `{n}`? (`lumiere list` shows them all)"),
+        Some(n) => anyhow!(
+            "no catalogue entry `{id}`; did you mean `{n}`? (`lumiere list` shows them all)"
+        ),
         None => anyhow!("no catalogue entry `{id}` (`lumiere list` shows them all)"),
     }
 }

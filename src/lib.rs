@@ -30,7 +30,8 @@ pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
     let path = Path::new(spec);
     let is_file = spec.ends_with(".toml") || path.exists();
     let (mut table, base_dir) = if is_file {
-        let text = std::fs::read_to_string(path).with_context(|| format!("cannot read scene {spec}"))?;
+        let text =
+            std::fs::read_to_string(path).with_context(|| format!("cannot read scene {spec}"))?;
         let mut table = scene::tables::parse(&text, spec)?;
         // A scene file may start from a catalogue entry: `extends = "cornell-box"`.
         if let Some(base) = table.remove("extends") {
@@ -39,7 +40,10 @@ pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
             scene::tables::merge(&mut merged, table);
             table = merged;
         }
-        (table, path.parent().map(Path::to_path_buf).unwrap_or_default())
+        (
+            table,
+            path.parent().map(Path::to_path_buf).unwrap_or_default(),
+        )
     } else {
         (catalogue::entry(spec)?.scene, Default::default())
     };

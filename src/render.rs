@@ -2,7 +2,7 @@
 //! terms, shading, and the box filter down to pixels.
 
 use crate::output::Image;
-use crate::raster::{VisibleSurface, View, prepare, rasterize};
+use crate::raster::{View, VisibleSurface, prepare, rasterize};
 use crate::scene::Scene;
 use crate::shading::{shade, vertex_colors};
 use crate::shadow::Visibility;
@@ -27,7 +27,11 @@ pub fn visible_surface(scene: &Scene) -> (View, VisibleSurface) {
 /// The view of the scene's sample grid.
 pub fn sample_view(scene: &Scene) -> View {
     let n = scene.render.supersample;
-    View::new(&scene.camera, scene.camera.width * n, scene.camera.height * n)
+    View::new(
+        &scene.camera,
+        scene.camera.width * n,
+        scene.camera.height * n,
+    )
 }
 
 /// Linear radiance image of `scene`.

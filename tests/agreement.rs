@@ -13,7 +13,8 @@ use proptest::prelude::*;
 use std::f64::consts::PI;
 
 fn triangle() -> impl Strategy<Value = [DVec3; 3]> {
-    let point = (-3.0..3.0f64, -3.0..3.0f64, -9.0..-2.0f64).prop_map(|(x, y, z)| DVec3::new(x, y, z));
+    let point =
+        (-3.0..3.0f64, -3.0..3.0f64, -9.0..-2.0f64).prop_map(|(x, y, z)| DVec3::new(x, y, z));
     [point.clone(), point.clone(), point]
 }
 
@@ -63,7 +64,14 @@ proptest! {
 }
 
 fn cornell(id: &str, size: u32) -> Scene {
-    load_scene(id, &[format!("camera.width={size}"), format!("camera.height={size}")]).unwrap()
+    load_scene(
+        id,
+        &[
+            format!("camera.width={size}"),
+            format!("camera.height={size}"),
+        ],
+    )
+    .unwrap()
 }
 
 /// Perspective-correct interpolation: every sample's world position is where the
@@ -79,7 +87,10 @@ fn interpolated_positions_are_exact_ray_plane_intersections() {
             continue;
         }
         let polygon = &scene.polygons[s.polygon as usize];
-        let (x, y) = ((k as u32 % view.width) as f64 + 0.5, (k as u32 / view.width) as f64 + 0.5);
+        let (x, y) = (
+            (k as u32 % view.width) as f64 + 0.5,
+            (k as u32 / view.width) as f64 + 0.5,
+        );
         let d = view.ray(x, y);
         let origin = polygon.vertices[0].position;
         let t = (origin - view.eye).dot(polygon.normal) / d.dot(polygon.normal);
@@ -147,7 +158,10 @@ fn polygon_irradiance_matches_quadrature_and_the_published_value() {
     for (p, n) in points {
         let exact = projected_solid_angle(p, n, &quad);
         let numeric = quadrature(p, n, &quad, normal, 800);
-        assert!((exact - numeric).abs() <= 2e-5 * exact.max(1e-3), "at {p}: {exact} vs {numeric}");
+        assert!(
+            (exact - numeric).abs() <= 2e-5 * exact.max(1e-3),
+            "at {p}: {exact} vs {numeric}"
+        );
     }
 }
 
@@ -158,8 +172,14 @@ fn pixel_radiance_is_the_light_model_exactly() {
     let scene = cornell("cornell-box-point", 64);
     let (_, surface) = visible_surface(&scene);
     let image = render(&scene);
-    let Light::Point(lamp) = &scene.lights[0] else { panic!("a point light") };
-    let floor = scene.objects.iter().position(|o| o.name == "cornell/floor").unwrap();
+    let Light::Point(lamp) = &scene.lights[0] else {
+        panic!("a point light")
+    };
+    let floor = scene
+        .objects
+        .iter()
+        .position(|o| o.name == "cornell/floor")
+        .unwrap();
     let mut checked = 0;
     for (s, pixel) in surface.samples.iter().zip(&image.pixels) {
         if s.is_empty() || scene.polygons[s.polygon as usize].object != floor {
@@ -183,7 +203,9 @@ fn pixel_radiance_is_the_light_model_exactly() {
         .samples
         .iter()
         .zip(&image.pixels)
-        .filter(|(s, _)| !s.is_empty() && scene.material_of(s.polygon as usize).emission != Vec3::ZERO)
+        .filter(|(s, _)| {
+            !s.is_empty() && scene.material_of(s.polygon as usize).emission != Vec3::ZERO
+        })
         .map(|(_, p)| *p)
         .collect();
     assert!(!lit.is_empty());
@@ -204,10 +226,19 @@ fn area_lit_pixels_match_quadrature() {
         }
         let polygon = &scene.polygons[s.polygon as usize];
         let to_eye = scene.camera.eye - s.position;
-        let n = if polygon.normal.dot(to_eye) > 0.0 { polygon.normal } else { -polygon.normal };
+        let n = if polygon.normal.dot(to_eye) > 0.0 {
+            polygon.normal
+        } else {
+            -polygon.normal
+        };
         let behind_light = (s.position - quad[0]).dot(normal) <= 0.0;
-        let phi = if behind_light { 0.0 } else { quadrature(s.position, n, &quad, normal, 300) };
-        let expected = scene.material_of(s.polygon as usize).diffuse / PI as f32 * radiance * phi as f32;
+        let phi = if behind_light {
+            0.0
+        } else {
+            quadrature(s.position, n, &quad, normal, 300)
+        };
+        let expected =
+            scene.material_of(s.polygon as usize).diffuse / PI as f32 * radiance * phi as f32;
         assert!(
             (*pixel - expected).abs().max_element() <= 1e-4 * expected.max_element().max(1e-3),
             "{pixel} vs {expected} at {}",

@@ -34,7 +34,9 @@ fn root() -> PathBuf {
 }
 
 fn render_entry(id: &str) -> Result<(Image, f32), Failed> {
-    let a = catalogue::entry(id).map_err(|e| format!("{e:#}"))?.algorithm;
+    let a = catalogue::entry(id)
+        .map_err(|e| format!("{e:#}"))?
+        .algorithm;
     let sets = [
         format!("camera.width={}", a.test_width),
         format!("camera.height={}", a.test_height),
@@ -45,15 +47,24 @@ fn render_entry(id: &str) -> Result<(Image, f32), Failed> {
 
 fn check(id: &str) -> Result<(), Failed> {
     let (image, exposure) = render_entry(id)?;
-    let actual = output::encode(&image, output::Format::Png, exposure).map_err(|e| e.to_string())?;
+    let actual =
+        output::encode(&image, output::Format::Png, exposure).map_err(|e| e.to_string())?;
     let golden = root().join("golden").join(format!("{id}.png"));
     let regenerate = format!("LUMIERE_UPDATE_GOLDEN=1 cargo test --release --test golden -- {id}");
     if std::env::var_os("LUMIERE_UPDATE_GOLDEN").is_some() {
         output::write_atomically(&golden, &actual).map_err(|e| e.to_string())?;
-        return Err(format!("{id}: golden rewritten at {}; look at it, then run the tests again", golden.display()).into());
+        return Err(format!(
+            "{id}: golden rewritten at {}; look at it, then run the tests again",
+            golden.display()
+        )
+        .into());
     }
     if !golden.exists() {
-        return Err(format!("{id}: no golden image at {}; create it with `{regenerate}`", golden.display()).into());
+        return Err(format!(
+            "{id}: no golden image at {}; create it with `{regenerate}`",
+            golden.display()
+        )
+        .into());
     }
     let expected = output::load(&golden).map_err(|e| format!("{e:#}"))?;
     let actual = output::load_png_bytes(&actual).map_err(|e| format!("{e:#}"))?;
@@ -107,9 +118,8 @@ fn write_failure(id: &str, expected: &Image, actual: &Image) -> PathBuf {
     };
     let dir = root().join("golden-failures");
     let path = dir.join(format!("{id}.png"));
-    let _ = std::fs::create_dir_all(&dir).and_then(|_| {
-        output::save(&sheet, &path, 1.0).map_err(std::io::Error::other)
-    });
+    let _ = std::fs::create_dir_all(&dir)
+        .and_then(|_| output::save(&sheet, &path, 1.0).map_err(std::io::Error::other));
     path
 }
 
@@ -119,7 +129,10 @@ fn orphans() -> Result<(), Failed> {
     let mut orphans = Vec::new();
     for entry in std::fs::read_dir(&dir).map_err(|e| e.to_string())? {
         let path = entry.map_err(|e| e.to_string())?.path();
-        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or_default();
+        let stem = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or_default();
         if path.extension() == Some("png".as_ref()) && !ids.iter().any(|id| id == stem) {
             orphans.push(Path::new(&path).display().to_string());
         }
@@ -127,7 +140,11 @@ fn orphans() -> Result<(), Failed> {
     if orphans.is_empty() {
         Ok(())
     } else {
-        Err(format!("golden images without a catalogue entry: {}", orphans.join(", ")).into())
+        Err(format!(
+            "golden images without a catalogue entry: {}",
+            orphans.join(", ")
+        )
+        .into())
     }
 }
 
@@ -144,7 +161,8 @@ fn deterministic() -> Result<(), Failed> {
                 .iter()
                 .map(|id| {
                     let (image, _) = render_entry(id)?;
-                    output::encode(&image, output::Format::Pfm, 1.0).map_err(|e| Failed::from(e.to_string()))
+                    output::encode(&image, output::Format::Pfm, 1.0)
+                        .map_err(|e| Failed::from(e.to_string()))
                 })
                 .collect()
         })

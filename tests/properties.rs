@@ -33,7 +33,11 @@ fn mesh() -> impl Strategy<Value = (usize, Vec<DVec3>, Vec<bool>)> {
                         // Boundary vertices stay on the square's sides.
                         let jx = if i == 0 || i == n { 0.0 } else { jx * cell };
                         let jy = if j == 0 || j == n { 0.0 } else { jy * cell };
-                        DVec3::new(-2.0 + i as f64 * cell + jx, -2.0 + j as f64 * cell + jy, -5.0)
+                        DVec3::new(
+                            -2.0 + i as f64 * cell + jx,
+                            -2.0 + j as f64 * cell + jy,
+                            -5.0,
+                        )
                     })
                     .collect();
                 (n, points, diagonals)
@@ -81,7 +85,7 @@ proptest! {
         outline.extend((0..n).map(|j| at(0, n - j)));
         let mesh = coverage(&triangles);
         let inside = coverage(&[outline]);
-        prop_assert!(inside.iter().any(|&c| c == 1));
+        prop_assert!(inside.contains(&1));
         if let Some(k) = (0..mesh.len()).find(|&k| mesh[k] != inside[k]) {
             prop_assert!(false, "sample ({}, {}) covered {} times, the outline {}", k as u32 % W, k as u32 / W, mesh[k], inside[k]);
         }

@@ -21,9 +21,15 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<()> {
     println!("threads: {}", rayon::current_num_threads());
-    println!("{:<22} {:>10} {:>14} {:>16}", "scene", "size", "render (ms)", "fill (Mpix/s)");
+    println!(
+        "{:<22} {:>10} {:>14} {:>16}",
+        "scene", "size", "render (ms)", "fill (Mpix/s)"
+    );
     for &size in &args.sizes {
-        let sets = [format!("camera.width={size}"), format!("camera.height={size}")];
+        let sets = [
+            format!("camera.width={size}"),
+            format!("camera.height={size}"),
+        ];
         let scene = load_scene(&args.scene, &sets)?;
         let full = median(args.runs, || {
             std::hint::black_box(render::render(&scene));

@@ -29,7 +29,11 @@ pub fn run(args: Args) -> Result<()> {
     let b = output::load(&args.b)?;
     let c = output::compare(&a, &b, args.exposure)?;
     if let Some(path) = &args.diff {
-        output::save(&output::difference_image(&a, &b, args.exposure, args.gain), path, 1.0)?;
+        output::save(
+            &output::difference_image(&a, &b, args.exposure, args.gain),
+            path,
+            1.0,
+        )?;
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&c)?);
@@ -37,7 +41,10 @@ pub fn run(args: Args) -> Result<()> {
         println!("rmse            {:.6}", c.rmse);
         println!("psnr            {:.2} dB", c.psnr);
         println!("max difference  {}/255", c.max_difference);
-        println!("differing       {:.4}% of pixels (> 2/255)", 100.0 * c.differing_share);
+        println!(
+            "differing       {:.4}% of pixels (> 2/255)",
+            100.0 * c.differing_share
+        );
     }
     Ok(())
 }

@@ -18,7 +18,11 @@ pub fn run(args: Args) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&tables)?);
         return Ok(());
     }
-    let width = entries.iter().map(|e| e.algorithm.id.len()).max().unwrap_or(0);
+    let width = entries
+        .iter()
+        .map(|e| e.algorithm.id.len())
+        .max()
+        .unwrap_or(0);
     for e in &entries {
         let a = &e.algorithm;
         println!("{:width$}  {}  {}", a.id, a.year, a.title);

@@ -42,7 +42,11 @@ pub fn compare(a: &Image, b: &Image, exposure: f32) -> Result<Comparison> {
     let rmse = (squares / (3 * a.pixels.len()) as f64).sqrt();
     Ok(Comparison {
         rmse,
-        psnr: if rmse == 0.0 { f64::INFINITY } else { -20.0 * rmse.log10() },
+        psnr: if rmse == 0.0 {
+            f64::INFINITY
+        } else {
+            -20.0 * rmse.log10()
+        },
         max_difference,
         differing_share: differing as f64 / a.pixels.len() as f64,
     })

@@ -41,10 +41,21 @@ pub fn decode(bytes: &[u8]) -> Result<Image> {
     let scale: f32 = fields[3].parse().context("bad PFM scale")?;
     ensure!(width > 0 && height > 0, "the image is empty");
     let count = width as usize * height as usize;
-    let data = bytes.get(at..at + count * 12).context("truncated PFM data")?;
+    let data = bytes
+        .get(at..at + count * 12)
+        .context("truncated PFM data")?;
     let read = |k: usize| {
-        let b = [data[4 * k], data[4 * k + 1], data[4 * k + 2], data[4 * k + 3]];
-        if scale < 0.0 { f32::from_le_bytes(b) } else { f32::from_be_bytes(b) }
+        let b = [
+            data[4 * k],
+            data[4 * k + 1],
+            data[4 * k + 2],
+            data[4 * k + 3],
+        ];
+        if scale < 0.0 {
+            f32::from_le_bytes(b)
+        } else {
+            f32::from_be_bytes(b)
+        }
     };
     let mut pixels = vec![Vec3::ZERO; count];
     for y in 0..height as usize {
@@ -70,7 +81,9 @@ mod tests {
         let image = Image {
             width: 3,
             height: 2,
-            pixels: (0..6).map(|k| Vec3::new(k as f32, 0.5, -1e-3 * k as f32)).collect(),
+            pixels: (0..6)
+                .map(|k| Vec3::new(k as f32, 0.5, -1e-3 * k as f32))
+                .collect(),
         };
         assert_eq!(decode(&encode(&image)).unwrap(), image);
     }

@@ -75,7 +75,11 @@ impl EdgeTable {
                 if a.y == b.y {
                     continue; // horizontal edges cross no row
                 }
-                let (top, bottom) = if (a.y, a.x) < (b.y, b.x) { (a, b) } else { (b, a) };
+                let (top, bottom) = if (a.y, a.x) < (b.y, b.x) {
+                    (a, b)
+                } else {
+                    (b, a)
+                };
                 // Rows whose centre j + 0.5 lies in [top.y, bottom.y).
                 let first = (top.y - 0.5).ceil().max(0.0);
                 let last = ((bottom.y - 0.5).ceil() - 1.0).min(height as f64 - 1.0);

@@ -21,7 +21,9 @@ mod watkins;
 pub mod zbuffer;
 
 pub use edge_table::{EdgeTable, FIXED_ONE};
-pub use project::{ATTRIBUTES, Attributes, DepthPlane, RasterVertex, ScreenPolygon, ScreenVertex, prepare};
+pub use project::{
+    ATTRIBUTES, Attributes, DepthPlane, RasterVertex, ScreenPolygon, ScreenVertex, prepare,
+};
 pub use view::View;
 pub use visible_surface::{NO_POLYGON, Sample, VisibleSurface};
 pub use watkins::{covered_samples, rasterize};

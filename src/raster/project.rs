@@ -83,9 +83,12 @@ impl DepthPlane {
     /// Newell's plane through screen points (x, y, ζ); `None` when the polygon is
     /// seen edge-on (no screen area).
     fn through(vertices: &[ScreenVertex]) -> Option<DepthPlane> {
-        let points: Vec<DVec3> = vertices.iter().map(|v| DVec3::new(v.x, v.y, v.zeta)).collect();
+        let points: Vec<DVec3> = vertices
+            .iter()
+            .map(|v| DVec3::new(v.x, v.y, v.zeta))
+            .collect();
         let n = crate::geometry::polygon::newell_normal(&points);
-        if !(n.z.abs() > 0.0) {
+        if n.z == 0.0 || !n.z.is_finite() {
             return None;
         }
         let centre = points.iter().copied().sum::<DVec3>() / points.len() as f64;
@@ -150,7 +153,9 @@ pub fn prepare<'a>(
             let eye = vertices
                 .iter()
                 .enumerate()
-                .map(|(k, v)| RasterVertex::new(view, v, colors.get(k).copied().unwrap_or_default()))
+                .map(|(k, v)| {
+                    RasterVertex::new(view, v, colors.get(k).copied().unwrap_or_default())
+                })
                 .collect();
             ScreenPolygon::new(view, id, eye)
         })

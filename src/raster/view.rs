@@ -64,7 +64,11 @@ impl View {
     /// bottom. The side planes pass through the eye, so clipping against them in eye
     /// space is exact.
     pub fn frustum(&self) -> [DVec4; 5] {
-        let (hw, hh, f) = (0.5 * self.width as f64, 0.5 * self.height as f64, self.focal);
+        let (hw, hh, f) = (
+            0.5 * self.width as f64,
+            0.5 * self.height as f64,
+            self.focal,
+        );
         [
             DVec4::new(0.0, 0.0, 1.0, -self.near),
             DVec4::new(f, 0.0, hw, 0.0),

@@ -99,8 +99,11 @@ impl<'a> Sweep<'a> {
     /// Merges this row's bucket, drops finished edges, restores x order.
     fn enter_row(&mut self) {
         if let Some(bucket) = self.table.buckets.get(self.row as usize) {
-            self.active
-                .extend(bucket.iter().map(|&k| (k, self.table.edges[k as usize].clone())));
+            self.active.extend(
+                bucket
+                    .iter()
+                    .map(|&k| (k, self.table.edges[k as usize].clone())),
+            );
         }
         let row = self.row;
         self.active.retain(|(_, e)| e.last_row >= row);

@@ -15,9 +15,12 @@ pub fn visible_ids(polygons: &[ScreenPolygon], width: u32, height: u32) -> Vec<u
         for v in &polygon.vertices {
             (x0, x1, y0, y1) = (x0.min(v.x), x1.max(v.x), y0.min(v.y), y1.max(v.y));
         }
-        let rows = (y0 - 0.5).ceil().max(0.0) as u32..((y1 - 0.5).ceil().max(0.0) as u32).min(height);
+        let rows =
+            (y0 - 0.5).ceil().max(0.0) as u32..((y1 - 0.5).ceil().max(0.0) as u32).min(height);
         for j in rows {
-            for i in (x0 - 0.5).ceil().max(0.0) as u32..((x1 - 0.5).ceil().max(0.0) as u32).min(width) {
+            for i in
+                (x0 - 0.5).ceil().max(0.0) as u32..((x1 - 0.5).ceil().max(0.0) as u32).min(width)
+            {
                 let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
                 if !covers(polygon, x, y) {
                     continue;

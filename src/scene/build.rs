@@ -5,8 +5,8 @@ use super::file::{LightFile, ObjectFile, SceneFile, ShapeKind};
 use super::resources::Resources;
 use super::shapes::{self, Faces};
 use super::{
-    AreaLight, Light, Material, Object, PointLight, Polygon, RenderSettings, Scene, materials,
-    obj, transform, validate,
+    AreaLight, Light, Material, Object, PointLight, Polygon, RenderSettings, Scene, materials, obj,
+    transform, validate,
 };
 use crate::geometry::polygon::{area, centroid, newell_normal, non_planarity};
 use anyhow::{Context, Result, anyhow, bail, ensure};
@@ -113,7 +113,10 @@ impl Builder {
                 shapes::sphere(resolution, smooth)
             }
             ShapeKind::Cylinder => {
-                ensure!(resolution >= 3, "a cylinder needs a resolution of at least 3");
+                ensure!(
+                    resolution >= 3,
+                    "a cylinder needs a resolution of at least 3"
+                );
                 shapes::cylinder(resolution, o.caps.unwrap_or(true), smooth)
             }
         };
@@ -130,11 +133,21 @@ impl Builder {
         Ok(())
     }
 
-    fn add_obj(&mut self, name: &str, o: &ObjectFile, m: &glam::DMat4, res: &dyn Resources) -> Result<()> {
+    fn add_obj(
+        &mut self,
+        name: &str,
+        o: &ObjectFile,
+        m: &glam::DMat4,
+        res: &dyn Resources,
+    ) -> Result<()> {
         let path = o.file.as_deref().unwrap_or_default();
         let model = obj::load(res, Path::new(path), o.smooth.unwrap_or(true))?;
         self.warnings.extend(model.warnings);
-        let forced = o.material.as_deref().map(|n| self.material(n)).transpose()?;
+        let forced = o
+            .material
+            .as_deref()
+            .map(|n| self.material(n))
+            .transpose()?;
         for mtl in &model.materials {
             if !self.material_index.contains_key(&mtl.name) {
                 self.add_material(materials::from_mtl(mtl)?);
@@ -150,7 +163,9 @@ impl Builder {
             let material = match (forced, material) {
                 (Some(m), _) => m,
                 (None, Some(n)) => self.material(&n)?,
-                (None, None) => bail!("{path}: object {part} has no material (usemtl) and the scene gives none"),
+                (None, None) => {
+                    bail!("{path}: object {part} has no material (usemtl) and the scene gives none")
+                }
             };
             let object = match objects.get(&part) {
                 Some(&k) => k,
@@ -268,7 +283,11 @@ fn check_keys(o: &ObjectFile) -> Result<()> {
     let given = [
         ("file", o.file.is_some(), &[Obj][..]),
         ("vertices", o.vertices.is_some(), &[Polygon][..]),
-        ("resolution", o.resolution.is_some(), &[Sphere, Cylinder][..]),
+        (
+            "resolution",
+            o.resolution.is_some(),
+            &[Sphere, Cylinder][..],
+        ),
         ("caps", o.caps.is_some(), &[Cylinder][..]),
         ("smooth", o.smooth.is_some(), &[Obj, Sphere, Cylinder][..]),
     ];

@@ -9,9 +9,9 @@ mod build;
 pub mod file;
 mod materials;
 mod obj;
-pub mod tables;
 pub mod resources;
 mod shapes;
+pub mod tables;
 mod transform;
 mod validate;
 

@@ -32,7 +32,6 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
         triangulate: false,
         ignore_points: true,
         ignore_lines: true,
-        ..Default::default()
     };
     let (models, materials) =
         tobj::load_obj_buf(&mut BufReader::new(bytes.as_slice()), &options, |mtl| {
@@ -67,7 +66,8 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
             start += arity;
             for polygon in planar_pieces(face) {
                 let positions: Vec<DVec3> = polygon.iter().map(|v| v.position).collect();
-                if !(area(&positions) > 0.0) {
+                let measure = area(&positions);
+                if measure == 0.0 || !measure.is_finite() {
                     out.warnings.push(format!(
                         "{}: object {}: a face of zero area was dropped",
                         path.display(),
@@ -86,11 +86,16 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
 
 fn corner(mesh: &tobj::Mesh, k: usize, smooth: bool) -> Vertex {
     let p = mesh.indices[k] as usize * 3;
-    let position = DVec3::new(mesh.positions[p], mesh.positions[p + 1], mesh.positions[p + 2]);
+    let position = DVec3::new(
+        mesh.positions[p],
+        mesh.positions[p + 1],
+        mesh.positions[p + 2],
+    );
     let normal = match mesh.normal_indices.get(k) {
         Some(&n) if smooth => {
             let n = n as usize * 3;
-            DVec3::new(mesh.normals[n], mesh.normals[n + 1], mesh.normals[n + 2]).normalize_or_zero()
+            DVec3::new(mesh.normals[n], mesh.normals[n + 1], mesh.normals[n + 2])
+                .normalize_or_zero()
         }
         _ => DVec3::ZERO,
     };

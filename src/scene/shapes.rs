@@ -98,7 +98,12 @@ pub fn sphere(resolution: u32, smooth: bool) -> Faces {
             } else if j + 1 == rings {
                 vec![point(i, j), point(i, j + 1), point(i + 1, j)]
             } else {
-                vec![point(i, j), point(i, j + 1), point(i + 1, j + 1), point(i + 1, j)]
+                vec![
+                    point(i, j),
+                    point(i, j + 1),
+                    point(i + 1, j + 1),
+                    point(i + 1, j),
+                ]
             };
             faces.push(finish(face, smooth));
         }
@@ -173,7 +178,9 @@ mod tests {
     fn cube_area_is_six() {
         let a: f64 = cube()
             .iter()
-            .map(|f| crate::geometry::polygon::area(&f.iter().map(|v| v.position).collect::<Vec<_>>()))
+            .map(|f| {
+                crate::geometry::polygon::area(&f.iter().map(|v| v.position).collect::<Vec<_>>())
+            })
             .sum();
         assert!((a - 6.0).abs() < 1e-12);
     }

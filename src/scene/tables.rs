@@ -71,7 +71,9 @@ pub fn set(table: &mut Table, assignment: &str) -> Result<()> {
                 }
                 Slot::from(element)
             }
-            Slot::Leaf => bail!("--set {assignment}: `{key}` is inside a value that is not a table"),
+            Slot::Leaf => {
+                bail!("--set {assignment}: `{key}` is inside a value that is not a table")
+            }
         };
     }
     unreachable!("the loop returns at the last key")

@@ -15,7 +15,7 @@ pub fn matrix(steps: &[TransformStep]) -> Result<DMat4> {
             TransformStep::Scale(Scale::PerAxis(k)) => DMat4::from_scale(DVec3::from(*k)),
             TransformStep::Rotate { axis, degrees } => {
                 let axis = DVec3::from(*axis);
-                if !(axis.length() > 0.0) {
+                if axis.length() == 0.0 {
                     bail!("rotate: the axis must be a non-zero vector");
                 }
                 DMat4::from_axis_angle(axis.normalize(), degrees.to_radians())
@@ -32,7 +32,7 @@ pub fn matrix(steps: &[TransformStep]) -> Result<DMat4> {
 /// Applies `m` to a polygon's vertices: positions by `m`, normals by its inverse
 /// transpose. A mirroring transform reverses the vertex order so the polygon keeps
 /// facing the way its normals say.
-pub fn apply(m: &DMat4, vertices: &mut Vec<Vertex>) {
+pub fn apply(m: &DMat4, vertices: &mut [Vertex]) {
     let normal_matrix = DMat3::from_mat4(*m).inverse().transpose();
     for v in vertices.iter_mut() {
         v.position = m.transform_point3(v.position);

@@ -21,7 +21,10 @@ pub fn vec3(what: &str, v: Vec3File) -> Result<DVec3> {
 
 pub fn colour(what: &str, v: Vec3File) -> Result<glam::Vec3> {
     let c = vec3(what, v)?;
-    ensure!(c.min_element() >= 0.0, "{what} must not be negative, got {v:?}");
+    ensure!(
+        c.min_element() >= 0.0,
+        "{what} must not be negative, got {v:?}"
+    );
     Ok(c.as_vec3())
 }
 
@@ -49,7 +52,10 @@ pub fn camera(c: &CameraFile) -> Result<Camera> {
     let look_at = vec3("camera.look_at", c.look_at)?;
     let up = vec3("camera.up", c.up)?;
     let view = look_at - eye;
-    ensure!(view.length() > 0.0, "camera.eye and camera.look_at are the same point");
+    ensure!(
+        view.length() > 0.0,
+        "camera.eye and camera.look_at are the same point"
+    );
     ensure!(up.length() > 0.0, "camera.up must not be zero");
     if view.normalize().cross(up.normalize()).length() < 1e-9 {
         bail!("camera.up is parallel to the view direction (eye to look_at)");

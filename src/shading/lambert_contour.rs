@@ -80,7 +80,10 @@ mod tests {
     fn matches_the_closed_form_for_squares() {
         for (half, height) in [(1.0, 1.0), (0.5, 2.0), (3.0, 0.25)] {
             let f = form_factor(DVec3::ZERO, DVec3::Z, &square(half, height));
-            assert!((f - centred_square_factor(half, height)).abs() < 1e-12, "{f}");
+            assert!(
+                (f - centred_square_factor(half, height)).abs() < 1e-12,
+                "{f}"
+            );
         }
         // The shared reference value of the course notes: 2 × 2 square at height 1.
         let f = form_factor(DVec3::ZERO, DVec3::Z, &square(1.0, 1.0));

@@ -35,11 +35,17 @@ pub fn reflected(point: &SurfacePoint, material: &Material, light: &Light) -> Ve
 }
 
 /// Light from a point source at offset `d` with intensity `intensity`.
-fn point_contribution(point: &SurfacePoint, material: &Material, d: DVec3, intensity: Vec3) -> Vec3 {
+fn point_contribution(
+    point: &SurfacePoint,
+    material: &Material,
+    d: DVec3,
+    intensity: Vec3,
+) -> Vec3 {
     let r2 = d.length_squared();
     let l = d / r2.sqrt();
     let cos = point.normal.dot(l);
-    if !(cos > 0.0) {
+    // Not lit from this side (or the light sits on the point: no direction).
+    if cos <= 0.0 || !cos.is_finite() {
         return Vec3::ZERO;
     }
     let irradiance = intensity * (cos / r2) as f32;

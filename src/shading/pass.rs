@@ -11,19 +11,26 @@
 
 use super::light_model::{SurfacePoint, reflected};
 use crate::geometry::polygon::centroid;
-use crate::raster::{VisibleSurface, View};
+use crate::raster::{View, VisibleSurface};
 use crate::scene::{Polygon, Scene, ShadingMode, Vertex};
 use crate::shadow::Visibility;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
 /// Linear radiance of every sample of `surface`.
-pub fn shade(scene: &Scene, view: &View, surface: &VisibleSurface, visibility: &Visibility) -> Vec<Vec3> {
+pub fn shade(
+    scene: &Scene,
+    view: &View,
+    surface: &VisibleSurface,
+    visibility: &Visibility,
+) -> Vec<Vec3> {
     let flat: Vec<Option<Vec3>> = scene
         .polygons
         .par_iter()
         .enumerate()
-        .map(|(id, p)| (scene.shading_of(id) == ShadingMode::Flat).then(|| flat_radiance(scene, view, p)))
+        .map(|(id, p)| {
+            (scene.shading_of(id) == ShadingMode::Flat).then(|| flat_radiance(scene, view, p))
+        })
         .collect();
     surface
         .samples
@@ -63,16 +70,30 @@ pub fn shade(scene: &Scene, view: &View, surface: &VisibleSurface, visibility: &
 }
 
 /// Unshadowed radiance leaving a point towards the eye, from every light.
-fn radiance_at(scene: &Scene, polygon: &Polygon, position: DVec3, normal: DVec3, eye: DVec3) -> Vec3 {
+fn radiance_at(
+    scene: &Scene,
+    polygon: &Polygon,
+    position: DVec3,
+    normal: DVec3,
+    eye: DVec3,
+) -> Vec3 {
     let to_eye = (eye - position).normalize();
-    let side = if polygon.normal.dot(to_eye) >= 0.0 { 1.0 } else { -1.0 };
+    let side = if polygon.normal.dot(to_eye) >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    };
     let point = SurfacePoint {
         position,
         normal: normal * side,
         to_eye,
     };
     let material = &scene.materials[polygon.material];
-    scene.lights.iter().map(|l| reflected(&point, material, l)).sum()
+    scene
+        .lights
+        .iter()
+        .map(|l| reflected(&point, material, l))
+        .sum()
 }
 
 fn flat_radiance(scene: &Scene, view: &View, polygon: &Polygon) -> Vec3 {

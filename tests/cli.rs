@@ -1,0 +1,291 @@
+//! The binary as a user meets it: subcommands, and one clear error line (never a
+//! panic, never a half-written file) for every kind of bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+struct Run {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn lumiere(args: &[&str], dir: &Path) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs");
+    Run {
+        code: out.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// A fresh directory holding `files` (name, contents).
+fn workspace(files: &[(&str, &str)]) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    dir
+}
+
+/// A valid scene with `extra` appended, its camera given by `camera`.
+fn scene(camera: &str, extra: &str) -> String {
+    format!(
+        "[camera]\n{camera}\nwidth = 16\nheight = 12\n\n[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\n\
+         [[lights]]\ntype = \"point\"\nposition = [0.0, 2.0, 2.0]\nintensity = [5.0, 5.0, 5.0]\n\n\
+         [[objects]]\nshape = \"quad\"\nmaterial = \"grey\"\n{extra}"
+    )
+}
+
+const CAMERA: &str = "eye = [0.0, 1.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0";
+
+/// The command failed with exactly one line, `error: …` containing `fragment`, and
+/// wrote no output file.
+fn assert_clear_error(run: &Run, fragment: &str, output: &Path) {
+    assert_ne!(run.code, 0, "should fail: {}", run.stderr);
+    assert!(!run.stderr.contains("panicked"), "panic: {}", run.stderr);
+    let lines: Vec<&str> = run.stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "one line expected, got: {}", run.stderr);
+    assert!(lines[0].starts_with("error: "), "{}", lines[0]);
+    assert!(
+        lines[0].contains(fragment),
+        "`{fragment}` not in: {}",
+        lines[0]
+    );
+    assert!(!output.exists(), "{} was written", output.display());
+}
+
+fn render_error(files: &[(&str, &str)], args: &[&str], fragment: &str) {
+    let dir = workspace(files);
+    let output: PathBuf = dir.path().join("out.png");
+    let mut all = vec!["render"];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["-o", "out.png"]);
+    let run = lumiere(&all, dir.path());
+    assert_clear_error(&run, fragment, &output);
+}
+
+#[test]
+fn renders_a_catalogue_entry_from_any_directory() {
+    let dir = workspace(&[]);
+    for name in ["c.png", "c.pfm"] {
+        let run = lumiere(
+            &[
+                "render",
+                "cornell-box",
+                "--width",
+                "24",
+                "--height",
+                "20",
+                "-o",
+                name,
+            ],
+            dir.path(),
+        );
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let image = lumiere::output::load(&dir.path().join(name)).unwrap();
+        assert_eq!((image.width, image.height), (24, 20));
+    }
+    let compare = lumiere(
+        &["compare", "c.png", "c.pfm", "--json", "--diff", "d.png"],
+        dir.path(),
+    );
+    assert_eq!(compare.code, 0, "{}", compare.stderr);
+    let figures: serde_json::Value = serde_json::from_str(&compare.stdout).unwrap();
+    assert_eq!(figures["max_difference"], 0);
+    assert!(dir.path().join("d.png").exists());
+}
+
+#[test]
+fn renders_a_scene_file_with_overrides() {
+    let dir = workspace(&[("s.toml", &scene(CAMERA, ""))]);
+    let run = lumiere(
+        &[
+            "render",
+            "s.toml",
+            "--set",
+            "camera.width=10",
+            "--set",
+            "render.shading=flat",
+            "--supersample",
+            "2",
+            "-o",
+            "s.png",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let image = lumiere::output::load(&dir.path().join("s.png")).unwrap();
+    assert_eq!((image.width, image.height), (10, 12));
+}
+
+#[test]
+fn lists_the_catalogue() {
+    let dir = workspace(&[]);
+    let run = lumiere(&["list"], dir.path());
+    assert_eq!(run.code, 0);
+    assert!(
+        run.stdout
+            .lines()
+            .any(|l| l.starts_with("cornell-box ") && l.contains("1984"))
+    );
+    let json = lumiere(&["list", "--json"], dir.path());
+    let entries: serde_json::Value = serde_json::from_str(&json.stdout).unwrap();
+    assert!(
+        entries
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|e| e["id"] == "scanline-visible-surface")
+    );
+}
+
+#[test]
+fn malformed_toml_names_file_line_and_column() {
+    let text = scene(CAMERA, "").replace("fov_y = 40.0", "fov_y = = 40.0");
+    render_error(&[("s.toml", &text)], &["s.toml"], "s.toml:4:");
+}
+
+#[test]
+fn unknown_keys_are_errors() {
+    render_error(
+        &[("s.toml", &scene(CAMERA, "colour = \"red\"\n"))],
+        &["s.toml"],
+        "objects[0].colour: unknown field `colour`",
+    );
+    render_error(
+        &[("s.toml", &scene(CAMERA, "resolution = 8\n"))],
+        &["s.toml"],
+        "`resolution` does not apply",
+    );
+}
+
+#[test]
+fn missing_and_broken_obj_files() {
+    let obj = scene(CAMERA, "").replace(
+        "shape = \"quad\"",
+        "shape = \"obj\"\nfile = \"missing.obj\"",
+    );
+    render_error(&[("s.toml", &obj)], &["s.toml"], "missing.obj");
+    let broken = obj.replace("missing.obj", "broken.obj");
+    render_error(
+        &[("s.toml", &broken), ("broken.obj", "v 1 2\nf 1 2 3\n")],
+        &["s.toml"],
+        "broken.obj",
+    );
+}
+
+#[test]
+fn unknown_ids_suggest_the_nearest() {
+    render_error(&[], &["cornel-box"], "did you mean `cornell-box`");
+}
+
+#[test]
+fn zero_and_absurd_sizes() {
+    render_error(
+        &[],
+        &["cornell-box", "--width", "0"],
+        "width must be between 1",
+    );
+    render_error(
+        &[],
+        &["cornell-box", "--width", "100000"],
+        "width must be between 1",
+    );
+    render_error(
+        &[],
+        &["cornell-box", "--width", "16000", "--height", "16000"],
+        "samples",
+    );
+}
+
+#[test]
+fn degenerate_cameras() {
+    let up = format!("{CAMERA}\nup = [0.0, -1.0, -3.0]");
+    render_error(
+        &[("s.toml", &scene(&up, ""))],
+        &["s.toml"],
+        "parallel to the view direction",
+    );
+    for fov in ["0.0", "180.0"] {
+        let camera = CAMERA.replace("40.0", fov);
+        render_error(
+            &[("s.toml", &scene(&camera, ""))],
+            &["s.toml"],
+            "fov_y must be strictly between 0 and 180",
+        );
+    }
+    let same = "eye = [1.0, 1.0, 1.0]\nlook_at = [1.0, 1.0, 1.0]\nfov_y = 40.0";
+    render_error(
+        &[("s.toml", &scene(same, ""))],
+        &["s.toml"],
+        "the same point",
+    );
+}
+
+#[test]
+fn nan_in_a_vector() {
+    let camera = CAMERA.replace("[0.0, 1.0, 3.0]", "[nan, 1.0, 3.0]");
+    render_error(
+        &[("s.toml", &scene(&camera, ""))],
+        &["s.toml"],
+        "camera.eye must be finite",
+    );
+}
+
+#[test]
+fn bad_output_and_overrides() {
+    render_error(
+        &[],
+        &["cornell-box", "--set", "camera.width"],
+        "expected key=value",
+    );
+    let dir = workspace(&[]);
+    let run = lumiere(
+        &[
+            "render",
+            "cornell-box",
+            "--width",
+            "8",
+            "--height",
+            "8",
+            "-o",
+            "out.bmp",
+        ],
+        dir.path(),
+    );
+    assert_clear_error(&run, "unknown image format", &dir.path().join("out.bmp"));
+    let run = lumiere(
+        &[
+            "render",
+            "cornell-box",
+            "--width",
+            "8",
+            "--height",
+            "8",
+            "-o",
+            "no/such/dir/out.png",
+        ],
+        dir.path(),
+    );
+    assert_clear_error(
+        &run,
+        "cannot write",
+        &dir.path().join("no/such/dir/out.png"),
+    );
+    let run = lumiere(&["compare", "a.png", "b.png"], dir.path());
+    assert_clear_error(&run, "cannot read", &dir.path().join("a.png"));
+}
+
+#[test]
+fn missing_scene_file() {
+    render_error(
+        &[],
+        &["nothing-here.toml"],
+        "cannot read scene nothing-here.toml",
+    );
+}
