@@ -29,7 +29,11 @@ const BAND_ROWS: u32 = 8;
 /// The visible surface at every sample of a `width × height` grid.
 pub fn rasterize(polygons: &[ScreenPolygon], width: u32, height: u32) -> VisibleSurface {
     let table = EdgeTable::build(polygons, height);
-    let mut samples = vec![Sample::EMPTY; width as usize * height as usize];
+    // Filled in parallel: the first touch of a large buffer costs as much as the sweep.
+    let mut samples: Vec<Sample> = (0..width as usize * height as usize)
+        .into_par_iter()
+        .map(|_| Sample::EMPTY)
+        .collect();
     samples
         .par_chunks_mut((width * BAND_ROWS) as usize)
         .enumerate()
