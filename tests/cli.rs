@@ -177,6 +177,13 @@ fn missing_and_broken_obj_files() {
         &["s.toml"],
         "broken.obj",
     );
+    let no_mtl = obj.replace("missing.obj", "m.obj");
+    let m_obj = "mtllib nope.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
+    render_error(
+        &[("s.toml", &no_mtl), ("m.obj", m_obj)],
+        &["s.toml"],
+        "cannot read nope.mtl",
+    );
 }
 
 #[test]
@@ -245,8 +252,11 @@ fn bad_output_and_overrides() {
         "expected key=value",
     );
     let dir = workspace(&[]);
-    let run = lumiere(
-        &[
+    for (output, fragment) in [
+        ("out.bmp", "unknown image format"),
+        ("no/such/dir/out.png", "cannot write"),
+    ] {
+        let args = [
             "render",
             "cornell-box",
             "--width",
@@ -254,29 +264,11 @@ fn bad_output_and_overrides() {
             "--height",
             "8",
             "-o",
-            "out.bmp",
-        ],
-        dir.path(),
-    );
-    assert_clear_error(&run, "unknown image format", &dir.path().join("out.bmp"));
-    let run = lumiere(
-        &[
-            "render",
-            "cornell-box",
-            "--width",
-            "8",
-            "--height",
-            "8",
-            "-o",
-            "no/such/dir/out.png",
-        ],
-        dir.path(),
-    );
-    assert_clear_error(
-        &run,
-        "cannot write",
-        &dir.path().join("no/such/dir/out.png"),
-    );
+            output,
+        ];
+        let run = lumiere(&args, dir.path());
+        assert_clear_error(&run, fragment, &dir.path().join(output));
+    }
     let run = lumiere(&["compare", "a.png", "b.png"], dir.path());
     assert_clear_error(&run, "cannot read", &dir.path().join("a.png"));
 }

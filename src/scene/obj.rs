@@ -6,8 +6,9 @@ use super::Vertex;
 use super::resources::Resources;
 use super::shapes::Faces;
 use crate::geometry::polygon::{area, newell_normal, non_planarity};
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Result, anyhow, bail};
 use glam::{DVec2, DVec3};
+use std::cell::RefCell;
 use std::io::BufReader;
 use std::path::Path;
 
@@ -33,15 +34,24 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
         ignore_points: true,
         ignore_lines: true,
     };
+    // tobj's loader callback can only say "open file failed": keep the real cause.
+    let mtl_error = RefCell::new(None);
     let (models, materials) =
         tobj::load_obj_buf(&mut BufReader::new(bytes.as_slice()), &options, |mtl| {
-            let data = resources
-                .read(&dir.join(mtl))
-                .map_err(|_| tobj::LoadError::OpenFileFailed)?;
+            let data = resources.read(&dir.join(mtl)).map_err(|e| {
+                mtl_error.replace(Some(e));
+                tobj::LoadError::OpenFileFailed
+            })?;
             tobj::load_mtl_buf(&mut BufReader::new(data.as_slice()))
         })
         .map_err(|e| anyhow!("{}: {e}", path.display()))?;
-    let materials = materials.with_context(|| format!("{}: its MTL file", path.display()))?;
+    let materials = match (materials, mtl_error.into_inner()) {
+        (Ok(m), _) => m,
+        (Err(_), Some(cause)) => {
+            return Err(cause.context(format!("{}: its MTL file", path.display())));
+        }
+        (Err(e), None) => bail!("{}: its MTL file: {e}", path.display()),
+    };
 
     let mut out = ObjModel {
         faces: Vec::new(),
