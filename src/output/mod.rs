@@ -23,9 +23,9 @@ pub struct Image {
 impl Image {
     /// The mean of each `factor × factor` block: the box filter over each pixel's
     /// square, from a grid sampled `factor` times finer.
-    pub fn downsample(&self, factor: u32) -> Image {
+    pub fn downsample(self, factor: u32) -> Image {
         if factor == 1 {
-            return self.clone();
+            return self;
         }
         let (w, h) = (self.width / factor, self.height / factor);
         let weight = 1.0 / (factor * factor) as f32;
