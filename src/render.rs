@@ -6,6 +6,7 @@ use crate::raster::{View, VisibleSurface, prepare, rasterize};
 use crate::scene::Scene;
 use crate::shading::{shade, vertex_colors};
 use crate::shadow::Visibility;
+use glam::Vec3;
 
 /// The visible surface of `scene` on its sample grid (pixels × supersample).
 pub fn visible_surface(scene: &Scene) -> (View, VisibleSurface) {
@@ -34,14 +35,37 @@ pub fn sample_view(scene: &Scene) -> View {
     )
 }
 
-/// Linear radiance image of `scene`.
+/// Linear radiance image of `scene`, shadowed by the scene's shadow method.
 pub fn render(scene: &Scene) -> Image {
     let (view, surface) = visible_surface(scene);
-    let radiance = shade(scene, &view, &surface, &Visibility::none());
+    let visibility = Visibility::compute(scene, &view, &surface, scene.shadows.method);
+    let radiance = shade(scene, &view, &surface, &visibility);
+    to_pixels(scene, &view, radiance)
+}
+
+/// The visibility term of the first light, white where lit, black in shadow, grey
+/// where partly lit (`--aov shadow`); empty samples are black.
+pub fn shadow_aov(scene: &Scene) -> Image {
+    let (view, surface) = visible_surface(scene);
+    let visibility = Visibility::compute(scene, &view, &surface, scene.shadows.method);
+    let values = (0..surface.samples.len())
+        .map(|k| {
+            let lit = if surface.samples[k].is_empty() {
+                0.0
+            } else {
+                visibility.of(0, k)
+            };
+            Vec3::splat(lit)
+        })
+        .collect();
+    to_pixels(scene, &view, values)
+}
+
+fn to_pixels(scene: &Scene, view: &View, samples: Vec<Vec3>) -> Image {
     Image {
         width: view.width,
         height: view.height,
-        pixels: radiance,
+        pixels: samples,
     }
     .downsample(scene.render.supersample)
 }

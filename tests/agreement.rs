@@ -248,3 +248,53 @@ fn area_lit_pixels_match_quadrature() {
     }
     assert!(checked > 100, "{checked}");
 }
+
+/// A square occluder of side s at height h under a point light at height H over its
+/// centre casts a square shadow of side s·H/(H − h) on the ground (similar
+/// triangles). Ray casting decides at the sample's own point, so every ground sample
+/// is classified exactly, up to 1e-6 of the border.
+#[test]
+fn ray_cast_shadow_of_a_square_is_the_similar_triangle_square() {
+    let (s, h, light_height) = (2.0, 1.0, 4.0);
+    let text = format!(
+        "[camera]\neye = [0.0, 12.0, 0.001]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 160\nheight = 160\n\
+         [shadows]\nmethod = \"ray-cast\"\n[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+         [[lights]]\ntype = \"point\"\nposition = [0.0, {light_height}, 0.0]\nintensity = [10.0, 10.0, 10.0]\n\
+         [[objects]]\nshape = \"quad\"\nname = \"ground\"\nmaterial = \"grey\"\ntransform = [{{ scale = 8.0 }}]\n\
+         [[objects]]\nshape = \"quad\"\nname = \"occluder\"\nmaterial = \"grey\"\n\
+         transform = [{{ scale = {s} }}, {{ translate = [0.0, {h}, 0.0] }}]\n"
+    );
+    let dir = std::env::temp_dir().join(format!("lumiere-square-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("square.toml");
+    std::fs::write(&path, text).unwrap();
+    let scene = load_scene(path.to_str().unwrap(), &[]).unwrap();
+    let (view, surface) = visible_surface(&scene);
+    let visibility =
+        lumiere::shadow::Visibility::compute(&scene, &view, &surface, scene.shadows.method);
+    let half_shadow = 0.5 * s * light_height / (light_height - h);
+    let ground = scene
+        .objects
+        .iter()
+        .position(|o| o.name == "ground")
+        .unwrap();
+    let (mut checked, mut shadowed) = (0, 0);
+    for (k, sample) in surface.samples.iter().enumerate() {
+        if sample.is_empty() || scene.polygons[sample.polygon as usize].object != ground {
+            continue;
+        }
+        let inside = sample.position.x.abs().max(sample.position.z.abs());
+        if (inside - half_shadow).abs() <= 1e-6 {
+            continue;
+        }
+        let expected = if inside < half_shadow { 0.0 } else { 1.0 };
+        assert_eq!(visibility.of(0, k), expected, "at {}", sample.position);
+        checked += 1;
+        shadowed += (expected == 0.0) as usize;
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(
+        checked > 10_000 && shadowed > 500,
+        "{checked} checked, {shadowed} shadowed"
+    );
+}

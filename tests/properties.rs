@@ -161,3 +161,49 @@ proptest! {
         }
     }
 }
+
+mod bvh {
+    use glam::DVec3;
+    use lumiere::scene::{Polygon, Vertex};
+    use lumiere::shadow::ray_cast::{Occluders, segment_meets_polygon};
+    use proptest::prelude::*;
+
+    fn point() -> impl Strategy<Value = DVec3> {
+        (-5.0..5.0f64, -5.0..5.0f64, -5.0..5.0f64).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+    }
+
+    fn polygon(corners: [DVec3; 3]) -> Option<Polygon> {
+        let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+        (normal.length() > 1e-6).then(|| Polygon {
+            vertices: corners
+                .iter()
+                .map(|&position| Vertex {
+                    position,
+                    normal: normal.normalize(),
+                    uv: Default::default(),
+                })
+                .collect(),
+            normal: normal.normalize(),
+            material: 0,
+            object: 0,
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// The hierarchy changes the cost of a shadow query, never its answer.
+        #[test]
+        fn the_hierarchy_answers_like_testing_every_polygon(
+            triangles in prop::collection::vec([point(), point(), point()], 1..60),
+            segments in prop::collection::vec((point(), point()), 40),
+        ) {
+            let polygons: Vec<Polygon> = triangles.into_iter().filter_map(polygon).collect();
+            let occluders = Occluders::new(&polygons);
+            for (a, b) in segments {
+                let brute = polygons.iter().any(|p| segment_meets_polygon(a, b, p));
+                prop_assert_eq!(occluders.blocked(a, b, None), brute);
+            }
+        }
+    }
+}

@@ -1,6 +1,7 @@
 //! `lumiere render`: one image of a catalogue entry or a scene file.
 
 use anyhow::Result;
+use lumiere::shadow::ShadowMethod;
 use lumiere::{catalogue, load_scene, output};
 use std::path::PathBuf;
 
@@ -23,6 +24,13 @@ pub struct Args {
     /// N x N samples per pixel on a regular grid, averaged (box filter).
     #[arg(long)]
     supersample: Option<u32>,
+    /// Shadow method, overriding the scene's `[shadows] method`.
+    #[arg(long, value_enum)]
+    shadows: Option<ShadowMethod>,
+    /// Write an intermediate buffer instead of the image: `shadow` is the first
+    /// light's visibility term (white lit, black shadowed, grey partial).
+    #[arg(long, value_enum)]
+    aov: Option<Aov>,
     /// Render a catalogue entry at its golden-image test size.
     #[arg(long)]
     test_size: bool,
@@ -30,6 +38,12 @@ pub struct Args {
     /// (array elements by index: --set objects.0.material=red). Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     sets: Vec<String>,
+}
+
+/// Intermediate buffers that can be written instead of the image.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+enum Aov {
+    Shadow,
 }
 
 pub fn run(args: Args) -> Result<()> {
@@ -51,10 +65,20 @@ pub fn run(args: Args) -> Result<()> {
     if let Some(n) = args.supersample {
         sets.push(format!("render.supersample={n}"));
     }
+    if let Some(method) = args.shadows {
+        let name = clap::ValueEnum::to_possible_value(&method).expect("no skipped variants");
+        sets.push(format!("shadows.method=\"{}\"", name.get_name()));
+    }
     let scene = load_scene(&args.scene, &sets)?;
     for warning in &scene.warnings {
         eprintln!("warning: {warning}");
     }
-    let image = lumiere::render(&scene);
-    output::save(&image, &args.output, scene.render.exposure)
+    match args.aov {
+        None => output::save(
+            &lumiere::render(&scene),
+            &args.output,
+            scene.render.exposure,
+        ),
+        Some(Aov::Shadow) => output::save(&lumiere::render::shadow_aov(&scene), &args.output, 1.0),
+    }
 }

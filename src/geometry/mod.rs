@@ -1,4 +1,5 @@
 //! Polygons and clipping, shared by every pass that works at object precision.
 
+pub mod bvh;
 pub mod polygon;
 pub mod sutherland_hodgman;

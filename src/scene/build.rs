@@ -5,8 +5,8 @@ use super::file::{LightFile, ObjectFile, SceneFile, ShapeKind};
 use super::resources::Resources;
 use super::shapes::{self, Faces};
 use super::{
-    AreaLight, Light, Material, Object, PointLight, Polygon, RenderSettings, Scene, materials, obj,
-    transform, validate,
+    AreaLight, Light, Material, Object, PointLight, Polygon, RenderSettings, Scene, ShadowSettings,
+    materials, obj, transform, validate,
 };
 use crate::geometry::polygon::{area, centroid, newell_normal, non_planarity};
 use anyhow::{Context, Result, anyhow, bail, ensure};
@@ -32,6 +32,28 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         "render.exposure must be a positive number"
     );
     validate::image_size(camera.width, camera.height, render.supersample)?;
+    let s = &file.shadows;
+    ensure!(
+        (1..=8192).contains(&s.map_resolution),
+        "shadows.map_resolution must be between 1 and 8192, got {}",
+        s.map_resolution
+    );
+    ensure!(
+        s.map_bias.is_finite() && s.map_bias >= 0.0,
+        "shadows.map_bias must be a non-negative number"
+    );
+    ensure!(
+        s.pcf % 2 == 1 && s.pcf <= 15,
+        "shadows.pcf must be an odd kernel size from 1 to 15, got {}",
+        s.pcf
+    );
+    let shadows = ShadowSettings {
+        method: s.method,
+        map_resolution: s.map_resolution,
+        map_bias: s.map_bias,
+        pcf: s.pcf,
+        post_pass: s.post_pass,
+    };
 
     let mut builder = Builder::default();
     for (name, m) in &file.materials {
@@ -56,6 +78,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
     Ok(Scene {
         camera,
         render,
+        shadows,
         materials: builder.materials,
         objects: builder.objects,
         polygons: builder.polygons,

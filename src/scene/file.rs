@@ -19,6 +19,51 @@ pub struct SceneFile {
     pub lights: Vec<LightFile>,
     #[serde(default)]
     pub objects: Vec<ObjectFile>,
+    #[serde(default)]
+    pub shadows: ShadowsFile,
+}
+
+/// `[shadows]`: which method, and the shadow map's settings.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShadowsFile {
+    #[serde(default)]
+    pub method: crate::shadow::ShadowMethod,
+    /// Shadow map: texels along each side of each cube face.
+    #[serde(default = "map_resolution")]
+    pub map_resolution: u32,
+    /// Shadow map: depth bias in texels (of the map at the sample's distance).
+    #[serde(default = "map_bias")]
+    pub map_bias: f64,
+    /// Shadow map: percentage-closer filtering kernel (k × k texels; 1 = off).
+    #[serde(default = "pcf")]
+    pub pcf: u32,
+    /// Shadow map: Williams's original post-pass (shadow applied to the finished
+    /// image) instead of a lookup in the light model.
+    #[serde(default)]
+    pub post_pass: bool,
+}
+
+impl Default for ShadowsFile {
+    fn default() -> Self {
+        ShadowsFile {
+            method: Default::default(),
+            map_resolution: map_resolution(),
+            map_bias: map_bias(),
+            pcf: pcf(),
+            post_pass: false,
+        }
+    }
+}
+
+fn map_resolution() -> u32 {
+    1024
+}
+fn map_bias() -> f64 {
+    1.5
+}
+fn pcf() -> u32 {
+    1
 }
 
 #[derive(Debug, Deserialize)]

@@ -57,6 +57,16 @@ pub struct RenderSettings {
     pub background: Vec3,
 }
 
+/// How shadows are made (`[shadows]` in the scene file).
+#[derive(Clone, Debug)]
+pub struct ShadowSettings {
+    pub method: crate::shadow::ShadowMethod,
+    pub map_resolution: u32,
+    pub map_bias: f64,
+    pub pcf: u32,
+    pub post_pass: bool,
+}
+
 /// A surface's reflectance and emission (linear RGB).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
@@ -144,6 +154,7 @@ pub enum Light {
 pub struct Scene {
     pub camera: Camera,
     pub render: RenderSettings,
+    pub shadows: ShadowSettings,
     pub materials: Vec<Material>,
     pub objects: Vec<Object>,
     pub polygons: Vec<Polygon>,

@@ -1,6 +1,30 @@
-//! Shadows: every method answers, for one light, how much of it reaches each visible
-//! sample (0 shadowed, 1 lit, between for partial), so shading never needs to know
-//! how shadows are made and methods can be compared sample by sample.
+//! Shadows: every method answers, for one point light, how much of it reaches each
+//! visible sample (0 shadowed, 1 lit, between for partial), so shading never needs to
+//! know how shadows are made and methods can be compared sample by sample.
+//!
+//! Shared rule (Appel's "self-shadow"): a sample whose surface, on the side the eye
+//! sees, faces away from the light is shadowed by every method; the methods differ in
+//! how they find the cast shadows. Area lights are not shadowed by these hard-shadow
+//! methods.
+
+pub mod ray_cast;
+
+use crate::raster::{View, VisibleSurface};
+use crate::scene::{Light, Scene};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// How shadows are computed (`[shadows] method`, `--shadows`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum ShadowMethod {
+    /// No shadows: every light reaches every point.
+    #[default]
+    None,
+    /// Appel 1968: the segment from each visible point to the light, tested against
+    /// the scene through a bounding volume hierarchy.
+    RayCast,
+}
 
 /// The visibility terms of one render: per light, per sample of the visible-surface
 /// buffer. A light without a buffer is wholly visible everywhere.
@@ -13,6 +37,30 @@ impl Visibility {
     /// Every light fully visible at every sample (no shadows).
     pub fn none() -> Visibility {
         Visibility::default()
+    }
+
+    /// The visibility of every point light by `method`.
+    pub fn compute(
+        scene: &Scene,
+        view: &View,
+        surface: &VisibleSurface,
+        method: ShadowMethod,
+    ) -> Visibility {
+        if method == ShadowMethod::None {
+            return Visibility::none();
+        }
+        let per_light = scene
+            .lights
+            .iter()
+            .map(|light| match light {
+                Light::Point(l) => Some(match method {
+                    ShadowMethod::None => unreachable!("handled above"),
+                    ShadowMethod::RayCast => ray_cast::visibility(scene, view, surface, l.position),
+                }),
+                Light::Area(_) => None,
+            })
+            .collect();
+        Visibility { per_light }
     }
 
     /// Visibility of light `light` at sample `k`.
@@ -32,4 +80,34 @@ impl Visibility {
         }
         (0..count).map(|l| self.of(l, k)).sum::<f32>() / count as f32
     }
+}
+
+/// Whether the sample's surface, on the side the eye sees, faces away from the light
+/// (or the light lies in its plane): self-shadowed.
+pub fn faces_away(scene: &Scene, view: &View, polygon: u32, position: DVec3, light: DVec3) -> bool {
+    let n = scene.polygons[polygon as usize].normal;
+    let eye_side = n.dot(view.eye - position);
+    let light_side = n.dot(light - position);
+    eye_side * light_side <= 0.0
+}
+
+/// Per sample: 0 where empty or self-shadowed, else `lit(k, polygon, position)`.
+pub fn per_sample(
+    scene: &Scene,
+    view: &View,
+    surface: &VisibleSurface,
+    light: DVec3,
+    lit: impl Fn(usize, u32, DVec3) -> bool + Sync,
+) -> Vec<f32> {
+    surface
+        .samples
+        .par_iter()
+        .enumerate()
+        .map(|(k, s)| {
+            let visible = !s.is_empty()
+                && !faces_away(scene, view, s.polygon, s.position, light)
+                && lit(k, s.polygon, s.position);
+            if visible { 1.0 } else { 0.0 }
+        })
+        .collect()
 }
