@@ -35,11 +35,26 @@ pub fn sample_view(scene: &Scene) -> View {
     )
 }
 
+/// In Williams's post-pass, what a shadowed pixel keeps of its radiance.
+pub const POST_PASS_SHADE: f32 = 0.25;
+
 /// Linear radiance image of `scene`, shadowed by the scene's shadow method.
 pub fn render(scene: &Scene) -> Image {
     let (view, surface) = visible_surface(scene);
     let visibility = Visibility::compute(scene, &view, &surface, scene.shadows.method);
-    let radiance = shade(scene, &view, &surface, &visibility);
+    let radiance = if scene.shadows.post_pass {
+        // Williams 1978 as first published: the image is shaded without shadows,
+        // then every pixel the map finds in shadow is darkened, highlights included
+        // (the "veil" on highlights the course points out).
+        let mut radiance = shade(scene, &view, &surface, &Visibility::none());
+        for (k, r) in radiance.iter_mut().enumerate() {
+            let lit = visibility.mean(k);
+            *r *= lit + (1.0 - lit) * POST_PASS_SHADE;
+        }
+        radiance
+    } else {
+        shade(scene, &view, &surface, &visibility)
+    };
     to_pixels(scene, &view, radiance)
 }
 

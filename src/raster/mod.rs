@@ -26,4 +26,4 @@ pub use project::{
 };
 pub use view::View;
 pub use visible_surface::{NO_POLYGON, Sample, VisibleSurface};
-pub use watkins::{covered_samples, rasterize};
+pub use watkins::{covered_samples, rasterize, rasterize_depth};

@@ -19,7 +19,7 @@
 //! table exactly as a full sweep would have it (see `edge_table`).
 
 use super::edge_table::{Edge, EdgeTable, FIXED_ONE, first_pixel_at_or_after};
-use super::project::ATTRIBUTES;
+use super::project::{ATTRIBUTES, Attributes};
 use super::{Sample, ScreenPolygon, VisibleSurface};
 use glam::{DVec3, Vec2, Vec3};
 use rayon::prelude::*;
@@ -28,11 +28,45 @@ const BAND_ROWS: u32 = 8;
 
 /// The visible surface at every sample of a `width × height` grid.
 pub fn rasterize(polygons: &[ScreenPolygon], width: u32, height: u32) -> VisibleSurface {
+    let samples = sweep(polygons, width, height, Sample::EMPTY, |id, depth, a, z| {
+        Sample {
+            polygon: id,
+            depth,
+            position: DVec3::new(a[0], a[1], a[2]) * z,
+            normal: DVec3::new(a[3], a[4], a[5]).normalize_or_zero().as_vec3(),
+            uv: Vec2::new((a[6] * z) as f32, (a[7] * z) as f32),
+            color: Vec3::new((a[8] * z) as f32, (a[9] * z) as f32, (a[10] * z) as f32),
+        }
+    });
+    VisibleSurface {
+        width,
+        height,
+        samples,
+    }
+}
+
+/// The depth (eye distance along the view axis) of the nearest polygon at every
+/// sample, infinity where none: the image a depth-buffer pass would hold.
+pub fn rasterize_depth(polygons: &[ScreenPolygon], width: u32, height: u32) -> Vec<f32> {
+    sweep(polygons, width, height, f32::INFINITY, |_, depth, _, _| {
+        depth as f32
+    })
+}
+
+/// The sweep, writing `write(id, depth, attributes over z, z)` at each sample where
+/// a polygon is visible and `empty` elsewhere.
+fn sweep<S: Copy + Send + Sync>(
+    polygons: &[ScreenPolygon],
+    width: u32,
+    height: u32,
+    empty: S,
+    write: impl Fn(u32, f64, &Attributes, f64) -> S + Sync,
+) -> Vec<S> {
     let table = EdgeTable::build(polygons, height);
     // Filled in parallel: the first touch of a large buffer costs as much as the sweep.
-    let mut samples: Vec<Sample> = (0..width as usize * height as usize)
+    let mut samples: Vec<S> = (0..width as usize * height as usize)
         .into_par_iter()
-        .map(|_| Sample::EMPTY)
+        .map(|_| empty)
         .collect();
     samples
         .par_chunks_mut((width * BAND_ROWS) as usize)
@@ -42,16 +76,27 @@ pub fn rasterize(polygons: &[ScreenPolygon], width: u32, height: u32) -> Visible
             for row in rows.chunks_mut(width as usize) {
                 let y = sweep.row as f64 + 0.5;
                 sweep.for_each_span(width, |i0, i1, inside, active| {
-                    resolve_span(i0, i1, y, inside, active, polygons, row)
+                    let span = Span {
+                        y,
+                        active,
+                        polygons,
+                        write: &write,
+                    };
+                    resolve_span(i0, i1, inside, &span, row)
                 });
                 sweep.next_row();
             }
         });
-    VisibleSurface {
-        width,
-        height,
-        samples,
-    }
+    samples
+}
+
+/// What resolving a span needs besides its pixel range: the row, the active edges,
+/// the polygon table and what to write per sample.
+struct Span<'a, W> {
+    y: f64,
+    active: &'a [(u32, Edge)],
+    polygons: &'a [ScreenPolygon],
+    write: &'a W,
 }
 
 /// The samples (x, y) one polygon covers, found by the same sweep (for tests of the
@@ -174,26 +219,25 @@ fn insertion_sort(active: &mut [(u32, Edge)]) {
     }
 }
 
-/// Decides the span [i0, i1] of row y and writes its samples.
-fn resolve_span(
+/// Decides the span [i0, i1] and writes its samples.
+fn resolve_span<S, W: Fn(u32, f64, &Attributes, f64) -> S>(
     i0: i64,
     i1: i64,
-    y: f64,
     inside: &[Inside],
-    active: &[(u32, Edge)],
-    polygons: &[ScreenPolygon],
-    row: &mut [Sample],
+    span: &Span<W>,
+    row: &mut [S],
 ) {
     if let [only] = inside {
-        fill_run(only, i0, i1, y, active, polygons, row);
+        fill_run(only, i0, i1, span, row);
         return;
     }
+    let (y, polygons) = (span.y, span.polygons);
     let mut pending = vec![(i0, i1)];
     while let Some((a, b)) = pending.pop() {
         let left = nearest(inside, a as f64 + 0.5, y, polygons);
         let right = nearest(inside, b as f64 + 0.5, y, polygons);
         if left.polygon == right.polygon || a == b {
-            fill_run(&left, a, b, y, active, polygons, row);
+            fill_run(&left, a, b, span, row);
             continue;
         }
         // Split where the two winners' depths cross along the row.
@@ -226,20 +270,18 @@ fn nearest(inside: &[Inside], x: f64, y: f64, polygons: &[ScreenPolygon]) -> Ins
     best
 }
 
-/// Writes samples i0..=i1 of row y with polygon `c`: ζ and the attributes over z
+/// Writes samples i0..=i1 of the row with polygon `c`: ζ and the attributes over z
 /// start at i0 (interpolated between the polygon's own crossings) and step by a
 /// constant increment per pixel, as in Watkins; each sample divides by ζ for the
 /// perspective-correct value and takes its depth from the polygon's plane.
-fn fill_run(
+fn fill_run<S, W: Fn(u32, f64, &Attributes, f64) -> S>(
     c: &Inside,
     i0: i64,
     i1: i64,
-    y: f64,
-    active: &[(u32, Edge)],
-    polygons: &[ScreenPolygon],
-    row: &mut [Sample],
+    span: &Span<W>,
+    row: &mut [S],
 ) {
-    let (l, r) = (&active[c.left].1, &active[c.right].1);
+    let (l, r) = (&span.active[c.left].1, &span.active[c.right].1);
     let (xl, xr) = (l.x as f64 / FIXED_ONE as f64, r.x as f64 / FIXED_ONE as f64);
     let per_pixel = if xr > xl { 1.0 / (xr - xl) } else { 0.0 };
     let t = (i0 as f64 + 0.5 - xl) * per_pixel;
@@ -251,19 +293,11 @@ fn fill_run(
         da[k] = (r.attributes[k] - l.attributes[k]) * per_pixel;
         a[k] = l.attributes[k] + (r.attributes[k] - l.attributes[k]) * t;
     }
-    let polygon = &polygons[c.polygon as usize];
-    let plane = polygon.plane;
+    let polygon = &span.polygons[c.polygon as usize];
     for i in i0..=i1 {
-        let z = 1.0 / zeta;
         let x = i as f64 + 0.5;
-        row[i as usize] = Sample {
-            polygon: polygon.id,
-            depth: 1.0 / plane.zeta(x, y),
-            position: DVec3::new(a[0], a[1], a[2]) * z,
-            normal: DVec3::new(a[3], a[4], a[5]).normalize_or_zero().as_vec3(),
-            uv: Vec2::new((a[6] * z) as f32, (a[7] * z) as f32),
-            color: Vec3::new((a[8] * z) as f32, (a[9] * z) as f32, (a[10] * z) as f32),
-        };
+        let depth = 1.0 / polygon.plane.zeta(x, span.y);
+        row[i as usize] = (span.write)(polygon.id, depth, &a, 1.0 / zeta);
         zeta += dzeta;
         for k in 0..ATTRIBUTES {
             a[k] += da[k];

@@ -8,6 +8,7 @@
 //! methods.
 
 pub mod ray_cast;
+pub mod shadow_map;
 
 use crate::raster::{View, VisibleSurface};
 use crate::scene::{Light, Scene};
@@ -24,6 +25,8 @@ pub enum ShadowMethod {
     /// Appel 1968: the segment from each visible point to the light, tested against
     /// the scene through a bounding volume hierarchy.
     RayCast,
+    /// Williams 1978: depth images from the light, compared per visible point.
+    ShadowMap,
 }
 
 /// The visibility terms of one render: per light, per sample of the visible-surface
@@ -56,6 +59,9 @@ impl Visibility {
                 Light::Point(l) => Some(match method {
                     ShadowMethod::None => unreachable!("handled above"),
                     ShadowMethod::RayCast => ray_cast::visibility(scene, view, surface, l.position),
+                    ShadowMethod::ShadowMap => {
+                        shadow_map::visibility(scene, view, surface, l.position)
+                    }
                 }),
                 Light::Area(_) => None,
             })

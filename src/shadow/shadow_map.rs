@@ -1,0 +1,157 @@
+//! Shadow depth maps: L. Williams, "Casting curved shadows on curved surfaces",
+//! Computer Graphics (SIGGRAPH '78) 12(3):270–274, 1978; percentage-closer filtering:
+//! W. T. Reeves, D. H. Salesin, R. L. Cook, "Rendering antialiased shadows with depth
+//! maps", Computer Graphics (SIGGRAPH '87) 21(4):283–291, 1987.
+//!
+//! First pass: the scene is rendered from the light into a depth image by the
+//! project's own scan-line rasterizer. A point light sees all around, so it gets six
+//! 90° frusta, the faces of a cube (±x, ±y, ±z). Second pass: each visible point is
+//! transformed into the light's frame (the cube face its direction falls in), its
+//! depth along that face's axis is compared with the depth stored in the texel it
+//! lands in, and it is in shadow when it lies farther than the stored depth plus a
+//! bias. With percentage-closer filtering the comparison is made against each texel
+//! of a k × k neighbourhood and the fraction that passes is the visibility.
+//!
+//! Choices (Williams leaves the bias open): the bias is measured in texels and
+//! slope-scaled, `map_bias` × (1 + tan θ) × the size of one texel at the point's
+//! distance (2z/resolution for a 90° face), θ the angle between the surface normal
+//! and the light: a surface the light grazes changes depth by tan θ texels from one
+//! texel to the next, which a constant bias cannot absorb. tan θ is capped at 50, so
+//! surfaces seen almost edge-on from the light keep some acne: the method's limit.
+//! PCF neighbourhoods stop at the face's border (clamped). Williams's
+//! original applied the shadow to the finished image (`post_pass`, see `render`);
+//! the default looks the map up inside the light model. Scene keys:
+//! `[shadows] method = "shadow-map"`, `map_resolution`, `map_bias`, `pcf`, `post_pass`.
+
+use super::per_sample;
+use crate::raster::{View, VisibleSurface, prepare, rasterize_depth};
+use crate::scene::{Camera, Scene};
+use glam::DVec3;
+
+/// One face of the cube: its view from the light and its depth image.
+pub struct Face {
+    pub view: View,
+    pub depth: Vec<f32>,
+}
+
+/// The six depth images around a point light.
+pub struct CubeShadowMap {
+    pub light: DVec3,
+    pub resolution: u32,
+    pub faces: Vec<Face>,
+}
+
+/// Largest tan θ the slope-scaled bias follows.
+const MAX_SLOPE: f64 = 50.0;
+
+/// Cube face axes and the up vector of each face's view.
+const FACES: [(DVec3, DVec3); 6] = [
+    (DVec3::X, DVec3::Y),
+    (DVec3::NEG_X, DVec3::Y),
+    (DVec3::Y, DVec3::Z),
+    (DVec3::NEG_Y, DVec3::Z),
+    (DVec3::Z, DVec3::Y),
+    (DVec3::NEG_Z, DVec3::Y),
+];
+
+impl CubeShadowMap {
+    /// The first pass: depth images of the scene from `light`.
+    pub fn build(scene: &Scene, light: DVec3, resolution: u32) -> CubeShadowMap {
+        let near = 1e-6 * scene_extent(scene).max(1e-9);
+        let faces = FACES
+            .iter()
+            .map(|&(axis, up)| {
+                let camera = Camera {
+                    eye: light,
+                    look_at: light + axis,
+                    up,
+                    fov_y: 90.0,
+                    width: resolution,
+                    height: resolution,
+                    near,
+                };
+                let view = View::new(&camera, resolution, resolution);
+                let polygons = prepare(
+                    &view,
+                    scene
+                        .polygons
+                        .iter()
+                        .enumerate()
+                        .map(|(id, p)| (id as u32, p.vertices.as_slice(), &[][..])),
+                );
+                let depth = rasterize_depth(&polygons, resolution, resolution);
+                Face { view, depth }
+            })
+            .collect();
+        CubeShadowMap {
+            light,
+            resolution,
+            faces,
+        }
+    }
+
+    /// The face whose frustum holds direction `d` (its largest axis).
+    fn face_of(d: DVec3) -> usize {
+        let a = d.abs();
+        if a.x >= a.y && a.x >= a.z {
+            if d.x > 0.0 { 0 } else { 1 }
+        } else if a.y >= a.z {
+            if d.y > 0.0 { 2 } else { 3 }
+        } else if d.z > 0.0 {
+            4
+        } else {
+            5
+        }
+    }
+
+    /// The second pass at one point with unit normal `n`: the fraction of the
+    /// `kernel × kernel` texels around the point's texel whose stored depth is not
+    /// nearer than the point's depth less the bias (`bias` in slope-scaled texels).
+    pub fn lookup(&self, p: DVec3, n: DVec3, bias: f64, kernel: u32) -> f32 {
+        let face = &self.faces[Self::face_of(p - self.light)];
+        let eye = face.view.to_eye(p);
+        let (x, y) = face.view.project(eye);
+        let size = self.resolution as i64;
+        let texel_at = |v: f64| (v.floor() as i64).clamp(0, size - 1);
+        let (i, j) = (texel_at(x), texel_at(y));
+        let texel = 2.0 * eye.z / self.resolution as f64;
+        let cos = n.dot((self.light - p).normalize()).abs().max(1e-12);
+        let tan = ((1.0 - cos * cos).sqrt() / cos).min(MAX_SLOPE);
+        let depth = eye.z - bias * (1.0 + tan) * texel;
+        let r = (kernel / 2) as i64;
+        let mut passed = 0;
+        for dj in -r..=r {
+            for di in -r..=r {
+                let (u, v) = ((i + di).clamp(0, size - 1), (j + dj).clamp(0, size - 1));
+                passed += (depth <= face.depth[(v * size + u) as usize] as f64) as u32;
+            }
+        }
+        passed as f32 / (kernel * kernel) as f32
+    }
+}
+
+/// The visibility of the point light at `light` for every sample.
+pub fn visibility(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3) -> Vec<f32> {
+    let s = &scene.shadows;
+    let map = CubeShadowMap::build(scene, light, s.map_resolution);
+    let lit = per_sample(scene, view, surface, light, |_, _, _| true);
+    surface
+        .samples
+        .iter()
+        .zip(lit)
+        .map(|(sample, self_lit)| {
+            if self_lit == 0.0 {
+                0.0
+            } else {
+                let n = scene.polygons[sample.polygon as usize].normal;
+                map.lookup(sample.position, n, s.map_bias, s.pcf)
+            }
+        })
+        .collect()
+}
+
+/// The diagonal of the scene's bounding box.
+fn scene_extent(scene: &Scene) -> f64 {
+    let b = crate::geometry::bvh::Aabb::of(scene.polygons.iter().flat_map(|p| p.positions()));
+    (b.max - b.min).length()
+}
