@@ -73,6 +73,13 @@ pub fn run(args: Args) -> Result<()> {
     for warning in &scene.warnings {
         eprintln!("warning: {warning}");
     }
+    if scene.shadows.method == ShadowMethod::ShadowVolumes {
+        for name in lumiere::shadow::shadow_volumes::open_objects(&scene) {
+            eprintln!(
+                "warning: object `{name}` is not a closed 2-manifold: its shadow volume may leak light"
+            );
+        }
+    }
     match args.aov {
         None => output::save(
             &lumiere::render(&scene),

@@ -9,6 +9,7 @@
 
 pub mod ray_cast;
 pub mod shadow_map;
+pub mod shadow_volumes;
 
 use crate::raster::{View, VisibleSurface};
 use crate::scene::{Light, Scene};
@@ -27,6 +28,9 @@ pub enum ShadowMethod {
     RayCast,
     /// Williams 1978: depth images from the light, compared per visible point.
     ShadowMap,
+    /// Crow 1977: volumes bounded by quads through the silhouette edges, counted
+    /// along each pixel's line of sight.
+    ShadowVolumes,
 }
 
 /// The visibility terms of one render: per light, per sample of the visible-surface
@@ -56,13 +60,17 @@ impl Visibility {
             .lights
             .iter()
             .map(|light| match light {
-                Light::Point(l) => Some(match method {
-                    ShadowMethod::None => unreachable!("handled above"),
-                    ShadowMethod::RayCast => ray_cast::visibility(scene, view, surface, l.position),
-                    ShadowMethod::ShadowMap => {
-                        shadow_map::visibility(scene, view, surface, l.position)
-                    }
-                }),
+                Light::Point(l) => {
+                    let at = l.position;
+                    Some(match method {
+                        ShadowMethod::None => unreachable!("handled above"),
+                        ShadowMethod::RayCast => ray_cast::visibility(scene, view, surface, at),
+                        ShadowMethod::ShadowMap => shadow_map::visibility(scene, view, surface, at),
+                        ShadowMethod::ShadowVolumes => {
+                            shadow_volumes::visibility(scene, view, surface, at)
+                        }
+                    })
+                }
                 Light::Area(_) => None,
             })
             .collect();

@@ -1,0 +1,219 @@
+//! Shadow volumes: F. C. Crow, "Shadow algorithms for computer graphics", Computer
+//! Graphics (SIGGRAPH '77) 11(2):242–248, 1977.
+//!
+//! For each object, the edges of its silhouette as seen from the light are found:
+//! edges between a polygon facing the light and one facing away (or no polygon at
+//! all, on an open boundary). An object of a single polygon is two-sided: whichever
+//! side the light is on faces it. Through each silhouette edge a shadow polygon is built,
+//! the quad from the edge to its projection away from the light, "taken far enough"
+//! (Crow's V_i) and then clipped to the view volume like any polygon. During the
+//! frame, shadow polygons take no part in visibility; for each pixel, the shadow
+//! polygons lying in front of the visible surface are counted, +1 for those facing
+//! the eye (entering a volume) and −1 for those facing away (leaving it). A point is
+//! in shadow when the count, started at the number of volumes that contain the eye,
+//! is positive.
+//!
+//! The method is only as valid as the objects: a volume is closed only if its object
+//! is a closed 2-manifold. On an open mesh, polygons facing away from the light still
+//! block it, but no silhouette edge bounds their shadow, so light leaks (entry
+//! `shadow-volumes-open-mesh`); `open_objects` names such objects for a warning. A
+//! light inside a closed object sees only its back faces: no silhouette, no volume,
+//! and the object shadows nothing (Crow assumes lights outside the objects).
+//!
+//! Choices: the eye's starting count is the number of light-facing polygons crossed
+//! by the segment from the eye to the light; a shadow polygon counts at a pixel when
+//! it is nearer than the visible surface by a relative 1e-9 (the quads start on the
+//! occluders' own edges). Scene key: `[shadows] method = "shadow-volumes"`.
+
+use super::per_sample;
+use super::ray_cast::segment_meets_polygon;
+use crate::geometry::bvh::Aabb;
+use crate::geometry::polygon::{centroid, newell_normal};
+use crate::raster::{RasterVertex, ScreenPolygon, View, VisibleSurface, covered_samples};
+use crate::scene::{Scene, Vertex};
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+use std::collections::HashMap;
+
+/// A shadow polygon: the quad through a silhouette edge, with its normal pointing out
+/// of the shadow volume.
+#[derive(Clone, Debug)]
+pub struct ShadowQuad {
+    pub corners: [DVec3; 4],
+    pub outward: DVec3,
+}
+
+/// An edge by the exact bits of its end points (shared vertices are equal points).
+type EdgeKey = ([u64; 3], [u64; 3]);
+
+fn key(p: DVec3) -> [u64; 3] {
+    [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]
+}
+
+fn faces_light(normal: DVec3, on_plane: DVec3, light: DVec3) -> bool {
+    normal.dot(light - on_plane) > 0.0
+}
+
+/// The shadow polygons of every object for a point light at `light`.
+pub fn shadow_quads(scene: &Scene, light: DVec3) -> Vec<ShadowQuad> {
+    let bounds = Aabb::of(
+        scene
+            .polygons
+            .iter()
+            .flat_map(|p| p.positions())
+            .chain([light]),
+    );
+    let far = 4.0 * (bounds.max - bounds.min).length();
+    let mut quads = Vec::new();
+    for object in 0..scene.objects.len() {
+        // Directed edges of the light-facing polygons; an edge walked both ways lies
+        // between two of them and bounds nothing.
+        let mut edges: HashMap<EdgeKey, (DVec3, DVec3, DVec3, i32)> = HashMap::new();
+        let polygons: Vec<_> = scene
+            .polygons
+            .iter()
+            .filter(|p| p.object == object)
+            .collect();
+        // A lone polygon is two-sided: whichever side the light is on faces it.
+        let lone = polygons.len() == 1;
+        for p in polygons {
+            let corners: Vec<DVec3> = p.positions().collect();
+            let facing = faces_light(p.normal, corners[0], light)
+                || (lone && faces_light(-p.normal, corners[0], light));
+            if !facing {
+                continue;
+            }
+            let inside = centroid(&corners);
+            for i in 0..corners.len() {
+                let (a, b) = (corners[i], corners[(i + 1) % corners.len()]);
+                let (ka, kb) = (key(a), key(b));
+                if let Some(e) = edges.get_mut(&(kb, ka)) {
+                    e.3 -= 1;
+                } else {
+                    edges.entry((ka, kb)).or_insert((a, b, inside, 0)).3 += 1;
+                }
+            }
+        }
+        let mut silhouette: Vec<(DVec3, DVec3, DVec3, i32)> =
+            edges.into_values().filter(|e| e.3 != 0).collect();
+        // HashMap order is arbitrary; the counts do not depend on it, but keep the
+        // quads in a reproducible order anyway.
+        silhouette.sort_by_key(|e| (key(e.0), key(e.1)));
+        for (a, b, inside, _) in silhouette {
+            let away = |p: DVec3| p + (p - light).normalize() * far;
+            let corners = [a, b, away(b), away(a)];
+            let n = newell_normal(&corners).normalize_or_zero();
+            if n == DVec3::ZERO {
+                continue; // the edge points at the light: its quad has no area
+            }
+            let outward = if n.dot(inside - a) > 0.0 { -n } else { n };
+            quads.push(ShadowQuad { corners, outward });
+        }
+    }
+    quads
+}
+
+/// Per sample, the count of shadow volumes containing the visible point.
+pub fn counts(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3) -> Vec<i32> {
+    let quads = shadow_quads(scene, light);
+    let start = eye_count(scene, view.eye, light);
+    let zeta: Vec<f64> = surface.samples.iter().map(|s| 1.0 / s.depth).collect();
+    let width = surface.width;
+    let crossings = quads
+        .par_iter()
+        .fold(
+            || vec![0i32; surface.samples.len()],
+            |mut count, quad| {
+                let facing = quad.outward.dot(view.eye - quad.corners[0]);
+                let step = if facing > 0.0 { 1 } else { -1 };
+                let vertices = quad
+                    .corners
+                    .iter()
+                    .map(|&position| {
+                        let v = Vertex {
+                            position,
+                            normal: quad.outward,
+                            uv: Default::default(),
+                        };
+                        RasterVertex::new(view, &v, Vec3::ZERO)
+                    })
+                    .collect();
+                let Some(screen) = ScreenPolygon::new(view, 0, vertices) else {
+                    return count;
+                };
+                for (x, y) in covered_samples(&screen, surface.width, surface.height) {
+                    let k = (y * width + x) as usize;
+                    let quad_zeta = screen.plane.zeta(x as f64 + 0.5, y as f64 + 0.5);
+                    if quad_zeta > zeta[k] * (1.0 + 1e-9) {
+                        count[k] += step;
+                    }
+                }
+                count
+            },
+        )
+        .reduce(
+            || vec![0i32; surface.samples.len()],
+            |mut a, b| {
+                a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
+                a
+            },
+        );
+    crossings.into_iter().map(|c| c + start).collect()
+}
+
+/// The number of volumes containing the eye: polygons casting a volume (facing the
+/// light, or alone in their object) between the eye and the light.
+fn eye_count(scene: &Scene, eye: DVec3, light: DVec3) -> i32 {
+    let mut per_object = vec![0usize; scene.objects.len()];
+    for p in &scene.polygons {
+        per_object[p.object] += 1;
+    }
+    scene
+        .polygons
+        .iter()
+        .filter(|p| {
+            let on_plane = p.vertices[0].position;
+            faces_light(p.normal, on_plane, light)
+                || (per_object[p.object] == 1 && faces_light(-p.normal, on_plane, light))
+        })
+        .filter(|p| segment_meets_polygon(eye, light, p))
+        .count() as i32
+}
+
+/// The visibility of the point light at `light` for every sample.
+pub fn visibility(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3) -> Vec<f32> {
+    let counts = counts(scene, view, surface, light);
+    per_sample(scene, view, surface, light, |k, _, _| counts[k] <= 0)
+}
+
+/// Objects of more than one polygon that are not closed 2-manifolds (some edge not
+/// shared by exactly two polygons walking it in opposite directions), whose shadow
+/// volumes may leak. A single polygon's volume is always exact.
+pub fn open_objects(scene: &Scene) -> Vec<String> {
+    let mut open = Vec::new();
+    for (index, object) in scene.objects.iter().enumerate() {
+        let polygons: Vec<_> = scene
+            .polygons
+            .iter()
+            .filter(|p| p.object == index)
+            .collect();
+        if polygons.len() < 2 {
+            continue;
+        }
+        let mut uses: HashMap<EdgeKey, i32> = HashMap::new();
+        for p in &polygons {
+            let corners: Vec<DVec3> = p.positions().collect();
+            for i in 0..corners.len() {
+                let (a, b) = (key(corners[i]), key(corners[(i + 1) % corners.len()]));
+                *uses.entry((a, b)).or_default() += 1;
+            }
+        }
+        let closed = uses
+            .iter()
+            .all(|(&(a, b), &n)| n == 1 && uses.get(&(b, a)) == Some(&1));
+        if !closed {
+            open.push(object.name.clone());
+        }
+    }
+    open
+}
