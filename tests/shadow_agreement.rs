@@ -263,3 +263,30 @@ mod edge_cases {
         }
     }
 }
+
+#[test]
+fn scanline_shadows_agree_with_ray_casting() {
+    assert_exact("cornell-box-point", 256, 256, ShadowMethod::Scanline);
+    assert_exact(CURVED, 256, 192, ShadowMethod::Scanline);
+}
+
+/// Bouknight & Kelley's sphere test prunes caster/receiver pairs: it changes the
+/// cost, never the image.
+#[test]
+fn scanline_pruning_changes_nothing() {
+    use lumiere::shadow::scanline_shadows::visibility_with;
+    let scene = load_scene(
+        CURVED,
+        &["camera.width=128".into(), "camera.height=96".into()],
+    )
+    .unwrap();
+    let (view, surface) = visible_surface(&scene);
+    let light = match &scene.lights[0] {
+        lumiere::scene::Light::Point(l) => l.position,
+        _ => unreachable!("a point light"),
+    };
+    let pruned = visibility_with(&scene, &view, &surface, light, true);
+    let all_pairs = visibility_with(&scene, &view, &surface, light, false);
+    assert_eq!(pruned, all_pairs);
+    assert!(pruned.iter().any(|&v| v == 0.0) && pruned.iter().any(|&v| v == 1.0));
+}

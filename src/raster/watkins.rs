@@ -28,7 +28,7 @@ const BAND_ROWS: u32 = 8;
 
 /// The visible surface at every sample of a `width × height` grid.
 pub fn rasterize(polygons: &[ScreenPolygon], width: u32, height: u32) -> VisibleSurface {
-    let samples = sweep(polygons, width, height, Sample::EMPTY, |id, depth, a, z| {
+    let samples = sweep::<_, _, true>(polygons, width, height, Sample::EMPTY, |id, depth, a, z| {
         Sample {
             polygon: id,
             depth,
@@ -48,20 +48,24 @@ pub fn rasterize(polygons: &[ScreenPolygon], width: u32, height: u32) -> Visible
 /// The depth (eye distance along the view axis) of the nearest polygon at every
 /// sample, infinity where none: the image a depth-buffer pass would hold.
 pub fn rasterize_depth(polygons: &[ScreenPolygon], width: u32, height: u32) -> Vec<f32> {
-    sweep(polygons, width, height, f32::INFINITY, |_, depth, _, _| {
+    sweep::<_, _, false>(polygons, width, height, f32::INFINITY, |_, depth, _, _| {
         depth as f32
     })
 }
 
 /// The sweep, writing `write(id, depth, attributes over z, z)` at each sample where
-/// a polygon is visible and `empty` elsewhere.
-fn sweep<S: Copy + Send + Sync>(
+/// a polygon is visible and `empty` elsewhere; with `ATTRIBUTES_USED` false the
+/// attributes are not stepped (a depth-only pass).
+fn sweep<S: Copy + Send + Sync, W, const ATTRIBUTES_USED: bool>(
     polygons: &[ScreenPolygon],
     width: u32,
     height: u32,
     empty: S,
-    write: impl Fn(u32, f64, &Attributes, f64) -> S + Sync,
-) -> Vec<S> {
+    write: W,
+) -> Vec<S>
+where
+    W: Fn(u32, f64, &Attributes, f64) -> S + Sync,
+{
     let table = EdgeTable::build(polygons, height);
     // Filled in parallel: the first touch of a large buffer costs as much as the sweep.
     let mut samples: Vec<S> = (0..width as usize * height as usize)
@@ -82,7 +86,7 @@ fn sweep<S: Copy + Send + Sync>(
                         polygons,
                         write: &write,
                     };
-                    resolve_span(i0, i1, inside, &span, row)
+                    resolve_span::<S, W, ATTRIBUTES_USED>(i0, i1, inside, &span, row)
                 });
                 sweep.next_row();
             }
@@ -102,17 +106,42 @@ struct Span<'a, W> {
 /// The samples (x, y) one polygon covers, found by the same sweep (for tests of the
 /// fill rule and for passes that need a polygon's footprint).
 pub fn covered_samples(polygon: &ScreenPolygon, width: u32, height: u32) -> Vec<(u32, u32)> {
-    let table = EdgeTable::build(std::slice::from_ref(polygon), height);
-    let mut sweep = Sweep::starting_at(&table, 0);
     let mut covered = Vec::new();
-    for _ in 0..height {
+    covered_spans(
+        std::slice::from_ref(polygon),
+        width,
+        height,
+        |row, i0, i1| {
+            covered.extend((i0..=i1).map(|i| (i, row)));
+        },
+    );
+    covered
+}
+
+/// Calls `f(row, first, last)` for every span of samples covered by at least one of
+/// `polygons`, row by row, left to right (the union of their footprints).
+pub fn covered_spans(
+    polygons: &[ScreenPolygon],
+    width: u32,
+    height: u32,
+    mut f: impl FnMut(u32, u32, u32),
+) {
+    let table = EdgeTable::build(polygons, height);
+    let Some(first) = table.edges.iter().map(|e| e.first_row).min() else {
+        return;
+    };
+    let last = table
+        .edges
+        .iter()
+        .map(|e| e.last_row)
+        .max()
+        .unwrap_or(first);
+    let mut sweep = Sweep::starting_at(&table, first);
+    for _ in first..=last {
         let row = sweep.row;
-        sweep.for_each_span(width, |i0, i1, _, _| {
-            covered.extend((i0..=i1).map(|i| (i as u32, row)));
-        });
+        sweep.for_each_span(width, |i0, i1, _, _| f(row, i0 as u32, i1 as u32));
         sweep.next_row();
     }
-    covered
 }
 
 /// A polygon inside the current span, with its own left and right crossings on this
@@ -220,7 +249,7 @@ fn insertion_sort(active: &mut [(u32, Edge)]) {
 }
 
 /// Decides the span [i0, i1] and writes its samples.
-fn resolve_span<S, W: Fn(u32, f64, &Attributes, f64) -> S>(
+fn resolve_span<S, W: Fn(u32, f64, &Attributes, f64) -> S, const ATTRIBUTES_USED: bool>(
     i0: i64,
     i1: i64,
     inside: &[Inside],
@@ -228,7 +257,7 @@ fn resolve_span<S, W: Fn(u32, f64, &Attributes, f64) -> S>(
     row: &mut [S],
 ) {
     if let [only] = inside {
-        fill_run(only, i0, i1, span, row);
+        fill_run::<S, W, ATTRIBUTES_USED>(only, i0, i1, span, row);
         return;
     }
     let (y, polygons) = (span.y, span.polygons);
@@ -237,7 +266,7 @@ fn resolve_span<S, W: Fn(u32, f64, &Attributes, f64) -> S>(
         let left = nearest(inside, a as f64 + 0.5, y, polygons);
         let right = nearest(inside, b as f64 + 0.5, y, polygons);
         if left.polygon == right.polygon || a == b {
-            fill_run(&left, a, b, span, row);
+            fill_run::<S, W, ATTRIBUTES_USED>(&left, a, b, span, row);
             continue;
         }
         // Split where the two winners' depths cross along the row.
@@ -274,7 +303,7 @@ fn nearest(inside: &[Inside], x: f64, y: f64, polygons: &[ScreenPolygon]) -> Ins
 /// start at i0 (interpolated between the polygon's own crossings) and step by a
 /// constant increment per pixel, as in Watkins; each sample divides by ζ for the
 /// perspective-correct value and takes its depth from the polygon's plane.
-fn fill_run<S, W: Fn(u32, f64, &Attributes, f64) -> S>(
+fn fill_run<S, W: Fn(u32, f64, &Attributes, f64) -> S, const ATTRIBUTES_USED: bool>(
     c: &Inside,
     i0: i64,
     i1: i64,
@@ -298,9 +327,11 @@ fn fill_run<S, W: Fn(u32, f64, &Attributes, f64) -> S>(
         let x = i as f64 + 0.5;
         let depth = 1.0 / polygon.plane.zeta(x, span.y);
         row[i as usize] = (span.write)(polygon.id, depth, &a, 1.0 / zeta);
-        zeta += dzeta;
-        for k in 0..ATTRIBUTES {
-            a[k] += da[k];
+        if ATTRIBUTES_USED {
+            zeta += dzeta;
+            for k in 0..ATTRIBUTES {
+                a[k] += da[k];
+            }
         }
     }
 }

@@ -8,6 +8,7 @@
 //! methods.
 
 pub mod ray_cast;
+pub mod scanline_shadows;
 pub mod shadow_map;
 pub mod shadow_volumes;
 
@@ -26,6 +27,9 @@ pub enum ShadowMethod {
     /// Appel 1968: the segment from each visible point to the light, tested against
     /// the scene through a bounding volume hierarchy.
     RayCast,
+    /// Bouknight & Kelley 1970: shadow polygons projected onto each receiver in a
+    /// pre-pass, span segments classified against them during scan-out.
+    Scanline,
     /// Williams 1978: depth images from the light, compared per visible point.
     ShadowMap,
     /// Crow 1977: volumes bounded by quads through the silhouette edges, counted
@@ -65,6 +69,9 @@ impl Visibility {
                     Some(match method {
                         ShadowMethod::None => unreachable!("handled above"),
                         ShadowMethod::RayCast => ray_cast::visibility(scene, view, surface, at),
+                        ShadowMethod::Scanline => {
+                            scanline_shadows::visibility(scene, view, surface, at)
+                        }
                         ShadowMethod::ShadowMap => shadow_map::visibility(scene, view, surface, at),
                         ShadowMethod::ShadowVolumes => {
                             shadow_volumes::visibility(scene, view, surface, at)

@@ -27,6 +27,7 @@ use super::per_sample;
 use crate::raster::{View, VisibleSurface, prepare, rasterize_depth};
 use crate::scene::{Camera, Scene};
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// One face of the cube: its view from the light and its depth image.
 pub struct Face {
@@ -137,7 +138,7 @@ pub fn visibility(scene: &Scene, view: &View, surface: &VisibleSurface, light: D
     let lit = per_sample(scene, view, surface, light, |_, _, _| true);
     surface
         .samples
-        .iter()
+        .par_iter()
         .zip(lit)
         .map(|(sample, self_lit)| {
             if self_lit == 0.0 {
