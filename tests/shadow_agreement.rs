@@ -288,5 +288,5 @@ fn scanline_pruning_changes_nothing() {
     let pruned = visibility_with(&scene, &view, &surface, light, true);
     let all_pairs = visibility_with(&scene, &view, &surface, light, false);
     assert_eq!(pruned, all_pairs);
-    assert!(pruned.iter().any(|&v| v == 0.0) && pruned.iter().any(|&v| v == 1.0));
+    assert!(pruned.contains(&0.0) && pruned.contains(&1.0));
 }
