@@ -31,18 +31,25 @@ pub fn projected_solid_angle(p: DVec3, n: DVec3, polygon: &[DVec3]) -> f64 {
         return 0.0;
     }
     // θᵢ = atan2(|rᵢ × rᵢ₊₁|, rᵢ · rᵢ₊₁) needs no unit vectors: both arguments scale
-    // by |rᵢ| |rᵢ₊₁|, and Γᵢ is the normalised cross product either way.
-    let first = vertices[0] - p;
-    let mut a = first;
+    // by |rᵢ| |rᵢ₊₁|, and Γᵢ is the normalised cross product either way. The angles
+    // are taken four edges at a time (SIMD); padding edges have θ = atan2(0, 1) = 0.
+    let count = vertices.len();
     let mut sum = 0.0;
-    for k in 1..=vertices.len() {
-        let b = vertices.get(k).map_or(first, |v| *v - p);
-        let cross = a.cross(b);
-        let sine = cross.length();
-        if sine > 0.0 {
-            sum += sine.atan2(a.dot(b)) * cross.dot(n) / sine;
+    for chunk in (0..count).step_by(4) {
+        let (mut sines, mut cosines, mut weights) = ([0.0; 4], [1.0; 4], [0.0; 4]);
+        for lane in 0..4.min(count - chunk) {
+            let i = chunk + lane;
+            let (a, b) = (vertices[i] - p, vertices[(i + 1) % count] - p);
+            let cross = a.cross(b);
+            let sine = cross.length();
+            if sine > 0.0 {
+                sines[lane] = sine;
+                cosines[lane] = a.dot(b);
+                weights[lane] = cross.dot(n) / sine;
+            }
         }
-        a = b;
+        let angles = wide::f64x4::from(sines).atan2(wide::f64x4::from(cosines));
+        sum += (angles * wide::f64x4::from(weights)).reduce_add();
     }
     0.5 * sum.abs()
 }
