@@ -207,3 +207,164 @@ mod bvh {
         }
     }
 }
+
+mod weiler_atherton {
+    use glam::DVec2;
+    use lumiere::geometry::sutherland_hodgman;
+    use lumiere::geometry::weiler_atherton::{Region, area, clip, contour_area};
+    use proptest::prelude::*;
+
+    /// A star-shaped (so simple, possibly concave) polygon: n spokes around a centre
+    /// at evenly spaced angles jittered by less than half a step, so no angular gap
+    /// reaches π (which could make the outline cross itself).
+    fn star() -> impl Strategy<Value = Vec<DVec2>> {
+        (
+            (-1.0..1.0f64, -1.0..1.0f64),
+            prop::collection::vec((0.0..0.45f64, 0.3..2.0f64), 3..10),
+        )
+            .prop_map(|((cx, cy), spokes)| {
+                let step = std::f64::consts::TAU / spokes.len() as f64;
+                spokes
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &(jitter, r))| {
+                        let angle = (i as f64 + jitter) * step;
+                        DVec2::new(cx + r * angle.cos(), cy + r * angle.sin())
+                    })
+                    .collect()
+            })
+    }
+
+    fn convex() -> impl Strategy<Value = Vec<DVec2>> {
+        star().prop_map(|p| hull(&p)).prop_filter("a polygon", |p| p.len() >= 3)
+    }
+
+    /// Convex hull (monotone chain), counter-clockwise.
+    fn hull(points: &[DVec2]) -> Vec<DVec2> {
+        let mut p = points.to_vec();
+        p.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+        let chain = |points: &mut dyn Iterator<Item = DVec2>| {
+            let mut h: Vec<DVec2> = Vec::new();
+            for q in points {
+                while h.len() >= 2 && (h[h.len() - 1] - h[h.len() - 2]).perp_dot(q - h[h.len() - 2]) <= 0.0 {
+                    h.pop();
+                }
+                h.push(q);
+            }
+            h.pop();
+            h
+        };
+        let mut lower = chain(&mut p.iter().copied());
+        lower.extend(chain(&mut p.iter().rev().copied()));
+        lower
+    }
+
+    /// No two edges of a contour cross, except neighbours at their shared vertex.
+    fn simple(contour: &[DVec2]) -> bool {
+        let n = contour.len();
+        for i in 0..n {
+            for j in i + 2..n {
+                if i == 0 && j == n - 1 {
+                    continue;
+                }
+                let (p0, p1) = (contour[i], contour[(i + 1) % n]);
+                let (q0, q1) = (contour[j], contour[(j + 1) % n]);
+                let (r, s) = (p1 - p0, q1 - q0);
+                let d = r.perp_dot(s);
+                if d != 0.0 {
+                    let t = (q0 - p0).perp_dot(s) / d;
+                    let u = (q0 - p0).perp_dot(r) / d;
+                    if t > 1e-9 && t < 1.0 - 1e-9 && u > 1e-9 && u < 1.0 - 1e-9 {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    fn check_identity(a: &Region, b: &Region) -> Result<(Region, Region), TestCaseError> {
+        let (inside, outside) = clip(a, b);
+        let whole = area(a);
+        prop_assert!(
+            (area(&inside) + area(&outside) - whole).abs() <= 1e-9 * whole.abs().max(1.0),
+            "{} + {} != {}",
+            area(&inside),
+            area(&outside),
+            whole
+        );
+        prop_assert!(area(&inside) >= -1e-9 && area(&outside) >= -1e-9);
+        Ok((inside, outside))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+
+        /// area(A ∩ B) + area(A − B) = area(A), and every result contour is simple.
+        #[test]
+        fn inside_and_outside_add_up(a in star(), b in star()) {
+            let (inside, outside) = check_identity(&vec![a], &vec![b])?;
+            for c in inside.iter().chain(&outside) {
+                prop_assert!(simple(c), "a result contour crosses itself");
+            }
+        }
+
+        /// With a convex clip polygon, A ∩ B equals Sutherland–Hodgman's result
+        /// (an independent method) up to the perturbation.
+        #[test]
+        fn agrees_with_sutherland_hodgman_on_convex_clips(a in star(), b in convex()) {
+            let (inside, _) = clip(&vec![a.clone()], &vec![b.clone()]);
+            let mut reference = a.clone();
+            for i in 0..b.len() {
+                let (p, q) = (b[i], b[(i + 1) % b.len()]);
+                reference = sutherland_hodgman::clip(&reference, |v: &DVec2| (q - p).perp_dot(*v - p));
+            }
+            let expected = if reference.len() >= 3 { contour_area(&reference) } else { 0.0 };
+            prop_assert!((area(&inside) - expected).abs() <= 1e-6, "{} vs {}", area(&inside), expected);
+        }
+
+        /// A region with a hole: the identity holds and the hole stays out of A ∩ B.
+        #[test]
+        fn regions_with_holes(b in star()) {
+            let square = |h: f64| vec![DVec2::new(-h, -h), DVec2::new(h, -h), DVec2::new(h, h), DVec2::new(-h, h)];
+            let mut hole = square(0.5);
+            hole.reverse();
+            let a: Region = vec![square(1.5), hole];
+            check_identity(&a, &vec![b])?;
+        }
+    }
+
+    fn square(x: f64, y: f64, side: f64) -> Vec<DVec2> {
+        vec![
+            DVec2::new(x, y),
+            DVec2::new(x + side, y),
+            DVec2::new(x + side, y + side),
+            DVec2::new(x, y + side),
+        ]
+    }
+
+    /// Shared edges, collinear overlapping edges, a vertex on an edge, coincident
+    /// polygons, a clip inside the subject: no panic, and the areas add up.
+    #[test]
+    fn degenerate_cases_keep_the_identity() {
+        let a = square(0.0, 0.0, 2.0);
+        let cases = [
+            ("shared edge", square(2.0, 0.0, 2.0)),
+            ("collinear overlap", square(1.0, 2.0, 2.0)),
+            ("vertex on an edge", vec![DVec2::new(1.0, 2.0), DVec2::new(2.0, 3.0), DVec2::new(0.0, 3.0)]),
+            ("coincident", square(0.0, 0.0, 2.0)),
+            ("inside", square(0.5, 0.5, 1.0)),
+            ("containing", square(-1.0, -1.0, 4.0)),
+            ("disjoint", square(5.0, 5.0, 1.0)),
+        ];
+        for (name, b) in cases {
+            let (inside, outside) = clip(&vec![a.clone()], &vec![b.clone()]);
+            let sum = area(&inside) + area(&outside);
+            assert!((sum - 4.0).abs() < 1e-8, "{name}: {} + {}", area(&inside), area(&outside));
+        }
+        let (inside, outside) = clip(&vec![a.clone()], &vec![square(0.5, 0.5, 1.0)]);
+        assert!((area(&inside) - 1.0).abs() < 1e-8 && (area(&outside) - 3.0).abs() < 1e-8);
+        let (inside, _) = clip(&vec![a.clone()], &vec![a.clone()]);
+        assert!((area(&inside) - 4.0).abs() < 1e-8);
+    }
+}

@@ -3,3 +3,4 @@
 pub mod bvh;
 pub mod polygon;
 pub mod sutherland_hodgman;
+pub mod weiler_atherton;

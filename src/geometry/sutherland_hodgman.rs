@@ -22,6 +22,12 @@ impl Lerp for glam::DVec3 {
     }
 }
 
+impl Lerp for glam::DVec2 {
+    fn lerp(&self, other: &Self, t: f64) -> Self {
+        *self + (*other - *self) * t
+    }
+}
+
 /// Clips `polygon` to the half-space `distance(v) >= 0`. The result may be empty;
 /// a concave polygon that the plane cuts in several pieces comes back as one polygon
 /// joined by zero-area bridges along the plane (the method's known limit).
