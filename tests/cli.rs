@@ -281,3 +281,39 @@ fn missing_scene_file() {
         "cannot read scene nothing-here.toml",
     );
 }
+
+#[test]
+fn shadow_polygons_lists_and_draws() {
+    let dir = workspace(&[("s.toml", &scene(CAMERA, ""))]);
+    let run = lumiere(
+        &[
+            "shadow-polygons",
+            "cornell-box-point",
+            "--json",
+            "--png",
+            "plan.png",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let report: serde_json::Value = serde_json::from_str(&run.stdout).unwrap();
+    let receivers = report["receivers"].as_array().unwrap();
+    assert!(
+        receivers
+            .iter()
+            .any(|r| r["object"] == "cornell/floor" && r["shadowed_area"].as_f64().unwrap() > 1e4)
+    );
+    assert!(dir.path().join("plan.png").exists());
+    let no_point_light = scene(CAMERA, "").replace(
+        "type = \"point\"\nposition = [0.0, 2.0, 2.0]\nintensity",
+        "type = \"area\"\nvertices = [[0.0, 2.0, 0.0], [0.0, 2.0, 1.0], [1.0, 2.0, 1.0]]\nradiance",
+    );
+    let run = lumiere(&["shadow-polygons", "s2.toml"], dir.path());
+    assert_ne!(run.code, 0);
+    std::fs::write(dir.path().join("s2.toml"), no_point_light).unwrap();
+    let run = lumiere(
+        &["shadow-polygons", "s2.toml", "--png", "p2.png"],
+        dir.path(),
+    );
+    assert_clear_error(&run, "no point light", &dir.path().join("p2.png"));
+}

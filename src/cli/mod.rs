@@ -4,6 +4,7 @@ mod bench;
 mod compare;
 mod list;
 mod render;
+mod shadow_polygons;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -26,6 +27,7 @@ enum Command {
     Render(render::Args),
     Compare(compare::Args),
     Bench(bench::Args),
+    ShadowPolygons(shadow_polygons::Args),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -34,5 +36,6 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Render(a) => render::run(a),
         Command::Compare(a) => compare::run(a),
         Command::Bench(a) => bench::run(a),
+        Command::ShadowPolygons(a) => shadow_polygons::run(a),
     }
 }

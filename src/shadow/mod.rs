@@ -10,6 +10,8 @@
 pub mod ray_cast;
 pub mod scanline_shadows;
 pub mod shadow_map;
+pub mod shadow_polygon_areas;
+pub mod shadow_polygons;
 pub mod shadow_volumes;
 
 use crate::raster::{View, VisibleSurface};
@@ -30,6 +32,9 @@ pub enum ShadowMethod {
     /// Bouknight & Kelley 1970: shadow polygons projected onto each receiver in a
     /// pre-pass, span segments classified against them during scan-out.
     Scanline,
+    /// Atherton, Weiler & Greenberg 1978: the polygons the light sees, found by
+    /// Weiler-Atherton hidden-surface removal, attached as lit detail polygons.
+    ShadowPolygons,
     /// Williams 1978: depth images from the light, compared per visible point.
     ShadowMap,
     /// Crow 1977: volumes bounded by quads through the silhouette edges, counted
@@ -73,6 +78,9 @@ impl Visibility {
                             scanline_shadows::visibility(scene, view, surface, at)
                         }
                         ShadowMethod::ShadowMap => shadow_map::visibility(scene, view, surface, at),
+                        ShadowMethod::ShadowPolygons => {
+                            shadow_polygons::visibility(scene, view, surface, at)
+                        }
                         ShadowMethod::ShadowVolumes => {
                             shadow_volumes::visibility(scene, view, surface, at)
                         }

@@ -1,0 +1,111 @@
+//! What Atherton, Weiler & Greenberg's shadow polygons measure: for every receiving
+//! polygon, its lit detail polygons and its shadowed remainder (the polygon less the
+//! lit ones, by Weiler–Atherton clipping in its own plane), with their areas in scene
+//! units. A polygon the light sees from either side counts as lit there.
+
+use super::shadow_polygons::{DetailPolygon, lit_polygons};
+use crate::geometry::weiler_atherton::{self, Region, contour_area};
+use crate::scene::{Polygon, Scene};
+use glam::{DVec2, DVec3};
+
+/// The lit and shadowed parts of one polygon. Regions are lists of contours in
+/// object space; outer contours run counter-clockwise seen from the polygon's front,
+/// holes clockwise.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct ReceiverShadows {
+    pub polygon: usize,
+    pub object: String,
+    /// Unit normal of the polygon's front.
+    pub normal: [f64; 3],
+    pub area: f64,
+    pub lit_area: f64,
+    pub shadowed_area: f64,
+    pub lit: Vec<Vec<[f64; 3]>>,
+    pub shadowed: Vec<Vec<[f64; 3]>>,
+}
+
+/// Coordinates in a polygon's plane: origin, and axes u, v with u × v = normal.
+struct PlaneFrame {
+    origin: DVec3,
+    u: DVec3,
+    v: DVec3,
+}
+
+impl PlaneFrame {
+    fn of(polygon: &Polygon) -> PlaneFrame {
+        let n = polygon.normal;
+        let helper = if n.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
+        let u = n.cross(helper).normalize();
+        PlaneFrame {
+            origin: polygon.vertices[0].position,
+            u,
+            v: n.cross(u),
+        }
+    }
+
+    fn flat(&self, p: DVec3) -> DVec2 {
+        DVec2::new((p - self.origin).dot(self.u), (p - self.origin).dot(self.v))
+    }
+
+    fn lift(&self, q: DVec2) -> [f64; 3] {
+        (self.origin + self.u * q.x + self.v * q.y).to_array()
+    }
+}
+
+/// The lit and shadowed polygons of every scene polygon for a point light.
+pub fn receiver_shadows(scene: &Scene, light: DVec3) -> Vec<ReceiverShadows> {
+    let lit = lit_polygons(scene, light);
+    scene
+        .polygons
+        .iter()
+        .zip(&lit)
+        .enumerate()
+        .map(|(id, (polygon, details))| measure(scene, id, polygon, details))
+        .collect()
+}
+
+fn measure(
+    scene: &Scene,
+    id: usize,
+    polygon: &Polygon,
+    details: &[DetailPolygon],
+) -> ReceiverShadows {
+    let frame = PlaneFrame::of(polygon);
+    let whole: Region = vec![polygon.positions().map(|p| frame.flat(p)).collect()];
+    let mut lit: Region = Vec::new();
+    let mut shadowed = whole.clone();
+    for detail in details {
+        let mut region: Region = detail
+            .contours
+            .iter()
+            .map(|(c, _)| c.iter().map(|&p| frame.flat(p)).collect())
+            .collect();
+        // The way back from the light may mirror a detail polygon: restore the
+        // orientation of its outer contour (and so of its holes).
+        let outer = detail
+            .contours
+            .iter()
+            .position(|(_, sign)| *sign > 0.0)
+            .unwrap_or(0);
+        if contour_area(&region[outer]) < 0.0 {
+            region.iter_mut().for_each(|c| c.reverse());
+        }
+        shadowed = weiler_atherton::clip(&shadowed, &region).1;
+        lit.extend(region);
+    }
+    let lift = |r: &Region| -> Vec<Vec<[f64; 3]>> {
+        r.iter()
+            .map(|c| c.iter().map(|&q| frame.lift(q)).collect())
+            .collect()
+    };
+    ReceiverShadows {
+        polygon: id,
+        object: scene.objects[polygon.object].name.clone(),
+        normal: polygon.normal.to_array(),
+        area: weiler_atherton::area(&whole),
+        lit_area: weiler_atherton::area(&lit),
+        shadowed_area: weiler_atherton::area(&shadowed),
+        lit: lift(&lit),
+        shadowed: lift(&shadowed),
+    }
+}
