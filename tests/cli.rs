@@ -317,3 +317,71 @@ fn shadow_polygons_lists_and_draws() {
     );
     assert_clear_error(&run, "no point light", &dir.path().join("p2.png"));
 }
+
+#[test]
+fn shadow_methods_and_the_visibility_buffer() {
+    let dir = workspace(&[]);
+    for method in [
+        "ray-cast",
+        "scanline",
+        "shadow-polygons",
+        "shadow-map",
+        "shadow-volumes",
+    ] {
+        let args = [
+            "render",
+            "cornell-box-point",
+            "--width",
+            "24",
+            "--height",
+            "24",
+            "--shadows",
+            method,
+            "--aov",
+            "shadow",
+            "-o",
+            "v.png",
+        ];
+        let run = lumiere(&args, dir.path());
+        assert_eq!(run.code, 0, "{method}: {}", run.stderr);
+        let image = lumiere::output::load(&dir.path().join("v.png")).unwrap();
+        // White where lit, black in shadow: both occur.
+        assert!(
+            image.pixels.iter().any(|p| p.x == 1.0) && image.pixels.iter().any(|p| p.x == 0.0),
+            "{method}"
+        );
+    }
+    let run = lumiere(
+        &[
+            "render",
+            "cornell-box-point",
+            "--shadows",
+            "fog",
+            "-o",
+            "v.png",
+        ],
+        dir.path(),
+    );
+    assert_ne!(run.code, 0);
+    assert!(run.stderr.contains("invalid value 'fog'"), "{}", run.stderr);
+    let run = lumiere(
+        &[
+            "render",
+            "shadow-volumes-open-mesh",
+            "--width",
+            "16",
+            "--height",
+            "12",
+            "-o",
+            "o.png",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0);
+    assert!(
+        run.stderr
+            .contains("warning: object `tube` is not a closed 2-manifold"),
+        "{}",
+        run.stderr
+    );
+}
