@@ -291,20 +291,14 @@ fn scanline_pruning_changes_nothing() {
     assert!(pruned.contains(&0.0) && pruned.contains(&1.0));
 }
 
-/// Exact on the Cornell box. On the tessellated curved scene, a known defect: the
-/// hidden-surface pass can still lose the shadow of one tiny facet at a sphere's pole,
-/// where the ground's holes from a fan of neighbouring facets pinch together (one
-/// sample of 12,288 at 128 x 96, none of 49,152 at 256 x 192). Until it is fixed the
-/// curved scene is held to 99.99% agreement, not to boundary-only differences.
 #[test]
 fn shadow_polygons_agree_with_ray_casting() {
     assert_exact("cornell-box-point", 256, 256, ShadowMethod::ShadowPolygons);
-    for (w, h) in [(128, 96), (256, 192)] {
-        let (_, _, exact) = mask(CURVED, w, h, ShadowMethod::RayCast, &[]);
-        let (_, _, polygons) = mask(CURVED, w, h, ShadowMethod::ShadowPolygons, &[]);
-        let share = disagreement(&polygons, &exact, |_| true);
-        assert!(share <= 1e-4, "{w} x {h}: {:.4}% differ", 100.0 * share);
-    }
+    assert_exact(CURVED, 256, 192, ShadowMethod::ShadowPolygons);
+    // At this size a sample fell on a sphere's pole, where a fan of facet shadows
+    // pinches the ground's region: the case that made Weiler-Atherton's retries
+    // escalate their perturbation.
+    assert_exact(CURVED, 128, 96, ShadowMethod::ShadowPolygons);
 }
 
 mod shadow_polygon_areas {
@@ -371,9 +365,11 @@ mod shadow_polygon_areas {
             "{}",
             ceiling.shadowed_area
         );
+        // Lit and shadowed add up within the clipper's documented bound (1e-6 relative
+        // once a clip has needed a larger perturbation, as one here does).
         for r in &receivers {
             assert!(
-                (r.lit_area + r.shadowed_area - r.area).abs() <= 1e-8 * r.area,
+                (r.lit_area + r.shadowed_area - r.area).abs() <= 1e-6 * r.area,
                 "{}",
                 r.object
             );

@@ -26,10 +26,13 @@
 //! than 1e-9 of the size are merged and contours thinner than that (mean width
 //! 2·area/perimeter) dropped, so that repeated clipping, as in hidden-surface
 //! removal, never meets features as small as its own perturbation. A ∩ B and A − B
-//! add up to A within that sweep (a relative 1e-8 at most). Should a perturbation
+//! add up to A within that sweep (a relative 1e-8 at most; 1e-6 after the rare
+//! retries below, whose perturbations are larger). Should a perturbation
 //! still meet a near-degeneracy, which shows as parts that do not add up, an inside
 //! larger than an operand, or an A ∩ B unlike the B ∩ A of the same clipping with the
-//! roles swapped, another one is drawn (up to eight).
+//! roles swapped, or points well inside the operands' contours landing in the wrong
+//! result, another one is drawn, growing from 1e-10 to 1e-6 of the size over eight
+//! tries (debris of earlier clips can be larger than the first perturbation).
 
 use glam::DVec2;
 
@@ -53,19 +56,54 @@ pub fn area(region: &Region) -> f64 {
 
 /// Whether `p` lies inside the region (non-zero winding number).
 pub fn contains(region: &Region, p: DVec2) -> bool {
+    region.iter().map(|c| winding(c, p)).sum::<i32>() != 0
+}
+
+/// The winding number of a contour around `p`.
+fn winding(c: &[DVec2], p: DVec2) -> i32 {
     let mut winding = 0;
-    for c in region {
-        for (i, a) in c.iter().enumerate() {
-            let b = c[(i + 1) % c.len()];
-            let side = (b - *a).perp_dot(p - *a);
-            if a.y <= p.y && b.y > p.y && side > 0.0 {
-                winding += 1;
-            } else if a.y > p.y && b.y <= p.y && side < 0.0 {
-                winding -= 1;
-            }
+    for (i, a) in c.iter().enumerate() {
+        let b = c[(i + 1) % c.len()];
+        let side = (b - *a).perp_dot(p - *a);
+        if a.y <= p.y && b.y > p.y && side > 0.0 {
+            winding += 1;
+        } else if a.y > p.y && b.y <= p.y && side < 0.0 {
+            winding -= 1;
         }
     }
-    winding != 0
+    winding
+}
+
+/// A region with the bounding box of each contour, for many containment tests: a
+/// contour does not wind around a point outside its box.
+struct Located<'a> {
+    region: &'a Region,
+    boxes: Vec<(DVec2, DVec2)>,
+}
+
+impl<'a> Located<'a> {
+    fn new(region: &'a Region) -> Located<'a> {
+        let boxes = region
+            .iter()
+            .map(|c| {
+                c.iter().fold(
+                    (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+                    |(lo, hi), q| (lo.min(*q), hi.max(*q)),
+                )
+            })
+            .collect();
+        Located { region, boxes }
+    }
+
+    fn contains(&self, p: DVec2) -> bool {
+        self.region
+            .iter()
+            .zip(&self.boxes)
+            .filter(|(_, (lo, hi))| p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y)
+            .map(|(c, _)| winding(c, p))
+            .sum::<i32>()
+            != 0
+    }
 }
 
 /// A ∩ B and A − B.
@@ -79,7 +117,10 @@ pub fn clip(subject: &Region, clip: &Region) -> (Region, Region) {
     let (whole, limit) = (area(subject), area(subject).min(area(clip)));
     let mut result = (Vec::new(), Vec::new());
     for salt in 0..PERTURBATION_TRIES {
-        let nudge = nudge_for(clip, salt) * (1e-10 * size);
+        // Two tries at each scale, then larger ones: a near-degeneracy left by
+        // earlier clips at one scale is stepped over at the next.
+        let scale = [1e-10, 1e-10, 1e-9, 1e-9, 1e-8, 1e-8, 1e-7, 1e-6][salt as usize];
+        let nudge = nudge_for(clip, salt) * (scale * size);
         let moved: Region = clip
             .iter()
             .map(|c| c.iter().map(|&p| p + nudge).collect())
@@ -94,11 +135,39 @@ pub fn clip(subject: &Region, clip: &Region) -> (Region, Region) {
         let slack = 1e-7 * whole.abs().max(size * size * 1e-12);
         let consistent =
             (i + o - whole).abs() <= slack && i <= limit + slack && i >= -slack && o >= -slack;
-        if consistent && (area(&Clipper::new(&moved, subject).run().0) - i).abs() <= slack {
+        if consistent
+            && (area(&Clipper::new(&moved, subject).run().0) - i).abs() <= slack
+            && probes_agree(subject, &moved, &result)
+        {
             break;
         }
     }
     result
+}
+
+/// Whether points well inside the operands' contours land where the operands say:
+/// in A ∩ B when in both, in A − B when in A only. Catches a result whose areas add
+/// up but whose pieces are misplaced (crossings missed near pinched contours).
+fn probes_agree(subject: &Region, clip: &Region, (inside, outside): &(Region, Region)) -> bool {
+    let (a, b) = (Located::new(subject), Located::new(clip));
+    let (i, o) = (Located::new(inside), Located::new(outside));
+    subject
+        .iter()
+        .chain(clip)
+        .filter_map(|c| probe(c))
+        .all(|p| {
+            let (in_a, in_b) = (a.contains(p), b.contains(p));
+            i.contains(p) == (in_a && in_b) && o.contains(p) == (in_a && !in_b)
+        })
+}
+
+/// A point inside a contour, away from its edges: the centroid of the first of its
+/// fan triangles that lies inside it with its centroid, if any.
+fn probe(contour: &[DVec2]) -> Option<DVec2> {
+    let alone = vec![contour.to_vec()];
+    (1..contour.len().saturating_sub(1))
+        .map(|i| (contour[0] + contour[i] + contour[i + 1]) / 3.0)
+        .find(|&p| contains(&alone, p))
 }
 
 /// How many perturbations are tried before a result is accepted as it is.
