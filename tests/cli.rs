@@ -385,3 +385,41 @@ fn shadow_methods_and_the_visibility_buffer() {
         run.stderr
     );
 }
+
+/// The complete example of docs/scene-format.md renders as written.
+#[test]
+fn the_documented_example_renders() {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scene-format.md"))
+        .unwrap();
+    let start = doc.find("```toml\n").expect("an example") + "```toml\n".len();
+    let example = &doc[start..start + doc[start..].find("```").unwrap()];
+    let dir = workspace(&[("example.toml", example)]);
+    let run = lumiere(
+        &[
+            "render",
+            "example.toml",
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "-o",
+            "e.png",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+}
+
+/// A user's scene can start from a catalogue entry and change only what differs.
+#[test]
+fn a_scene_file_extends_a_catalogue_entry() {
+    let text = "extends = \"cornell-box\"\n[camera]\nwidth = 20\nheight = 20\n[materials.red]\ndiffuse = [0.1, 0.1, 0.6]\n";
+    let dir = workspace(&[("mine.toml", text)]);
+    let run = lumiere(&["render", "mine.toml", "-o", "m.png"], dir.path());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let image = lumiere::output::load(&dir.path().join("m.png")).unwrap();
+    assert_eq!((image.width, image.height), (20, 20));
+    // The wall on the left, red in the entry, is blue here.
+    let left = image.pixels[10 * 20 + 1];
+    assert!(left.z > left.x, "{left}");
+}
