@@ -2,7 +2,7 @@
 //! terms, shading, and the box filter down to pixels.
 
 use crate::output::Image;
-use crate::raster::{View, VisibleSurface, prepare, rasterize};
+use crate::raster::{ScreenPolygon, View, VisibleSurface, prepare, rasterize};
 use crate::scene::Scene;
 use crate::shading::{shade, vertex_colors};
 use crate::shadow::Visibility;
@@ -23,6 +23,19 @@ pub fn visible_surface(scene: &Scene) -> (View, VisibleSurface) {
     );
     let surface = rasterize(&polygons, view.width, view.height);
     (view, surface)
+}
+
+/// The scene's polygons on `view`'s screen, without vertex colours (passes that need
+/// only coverage and depth: shadow maps, benchmarks).
+pub fn screen_polygons(scene: &Scene, view: &View) -> Vec<ScreenPolygon> {
+    prepare(
+        view,
+        scene
+            .polygons
+            .iter()
+            .enumerate()
+            .map(|(id, p)| (id as u32, p.vertices.as_slice(), &[][..])),
+    )
 }
 
 /// The view of the scene's sample grid.

@@ -68,14 +68,7 @@ pub fn run(args: Args) -> Result<()> {
 /// Mpixels per second of the visible-surface pass alone (polygons prepared once).
 fn fill_rate(scene: &lumiere::Scene, runs: usize) -> f64 {
     let view = render::sample_view(scene);
-    let polygons = raster::prepare(
-        &view,
-        scene
-            .polygons
-            .iter()
-            .enumerate()
-            .map(|(id, p)| (id as u32, p.vertices.as_slice(), &[][..])),
-    );
+    let polygons = render::screen_polygons(scene, &view);
     let sweep = median(runs, || {
         std::hint::black_box(raster::rasterize(&polygons, view.width, view.height));
     });

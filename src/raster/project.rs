@@ -111,6 +111,23 @@ pub struct ScreenPolygon {
 }
 
 impl ScreenPolygon {
+    /// The screen polygon of bare world points (no attributes to interpolate): shadow
+    /// polygons, detail polygons.
+    pub fn from_points(view: &View, id: u32, points: &[DVec3]) -> Option<ScreenPolygon> {
+        let vertices = points
+            .iter()
+            .map(|&position| {
+                let v = Vertex {
+                    position,
+                    normal: DVec3::Z,
+                    uv: Default::default(),
+                };
+                RasterVertex::new(view, &v, Vec3::ZERO)
+            })
+            .collect();
+        ScreenPolygon::new(view, id, vertices)
+    }
+
     /// Clips an eye-space polygon to the view frustum and projects it; `None` when
     /// nothing of it is in view or it is seen edge-on.
     pub fn new(view: &View, id: u32, vertices: Vec<RasterVertex>) -> Option<ScreenPolygon> {

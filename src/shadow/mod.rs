@@ -7,6 +7,7 @@
 //! how they find the cast shadows. Area lights are not shadowed by these hard-shadow
 //! methods.
 
+pub mod cube_faces;
 pub mod ray_cast;
 pub mod scanline_shadows;
 pub mod shadow_map;

@@ -25,9 +25,9 @@
 
 use super::per_sample;
 use crate::geometry::sutherland_hodgman::clip;
-use crate::raster::{RasterVertex, ScreenPolygon, View, VisibleSurface, covered_spans};
-use crate::scene::{Polygon, Scene, Vertex};
-use glam::{DVec3, Vec3};
+use crate::raster::{ScreenPolygon, View, VisibleSurface, covered_spans};
+use crate::scene::{Polygon, Scene};
+use glam::DVec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
@@ -153,20 +153,7 @@ pub fn visibility_with(
         .map(|(receiver, list)| {
             let screen: Vec<ScreenPolygon> = list
                 .iter()
-                .filter_map(|corners| {
-                    let vertices = corners
-                        .iter()
-                        .map(|&position| {
-                            let v = Vertex {
-                                position,
-                                normal: DVec3::Z,
-                                uv: Default::default(),
-                            };
-                            RasterVertex::new(view, &v, Vec3::ZERO)
-                        })
-                        .collect();
-                    ScreenPolygon::new(view, receiver as u32, vertices)
-                })
+                .filter_map(|corners| ScreenPolygon::from_points(view, receiver as u32, corners))
                 .collect();
             let mut intervals: Vec<Vec<(u32, u32)>> = vec![Vec::new(); surface.height as usize];
             covered_spans(&screen, surface.width, surface.height, |row, a, b| {

@@ -23,9 +23,11 @@
 //! the default looks the map up inside the light model. Scene keys:
 //! `[shadows] method = "shadow-map"`, `map_resolution`, `map_bias`, `pcf`, `post_pass`.
 
+use super::cube_faces::{FACES, face_of, face_view};
 use super::per_sample;
-use crate::raster::{View, VisibleSurface, prepare, rasterize_depth};
-use crate::scene::{Camera, Scene};
+use crate::raster::{View, VisibleSurface, rasterize_depth};
+use crate::render::screen_polygons;
+use crate::scene::Scene;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -45,42 +47,14 @@ pub struct CubeShadowMap {
 /// Largest tan θ the slope-scaled bias follows.
 const MAX_SLOPE: f64 = 50.0;
 
-/// Cube face axes and the up vector of each face's view.
-const FACES: [(DVec3, DVec3); 6] = [
-    (DVec3::X, DVec3::Y),
-    (DVec3::NEG_X, DVec3::Y),
-    (DVec3::Y, DVec3::Z),
-    (DVec3::NEG_Y, DVec3::Z),
-    (DVec3::Z, DVec3::Y),
-    (DVec3::NEG_Z, DVec3::Y),
-];
-
 impl CubeShadowMap {
     /// The first pass: depth images of the scene from `light`.
     pub fn build(scene: &Scene, light: DVec3, resolution: u32) -> CubeShadowMap {
-        let near = 1e-6 * scene_extent(scene).max(1e-9);
         let faces = FACES
             .iter()
-            .map(|&(axis, up)| {
-                let camera = Camera {
-                    eye: light,
-                    look_at: light + axis,
-                    up,
-                    fov_y: 90.0,
-                    width: resolution,
-                    height: resolution,
-                    near,
-                };
-                let view = View::new(&camera, resolution, resolution);
-                let polygons = prepare(
-                    &view,
-                    scene
-                        .polygons
-                        .iter()
-                        .enumerate()
-                        .map(|(id, p)| (id as u32, p.vertices.as_slice(), &[][..])),
-                );
-                let depth = rasterize_depth(&polygons, resolution, resolution);
+            .map(|&face| {
+                let view = face_view(scene, light, face, resolution);
+                let depth = rasterize_depth(&screen_polygons(scene, &view), resolution, resolution);
                 Face { view, depth }
             })
             .collect();
@@ -91,25 +65,11 @@ impl CubeShadowMap {
         }
     }
 
-    /// The face whose frustum holds direction `d` (its largest axis).
-    fn face_of(d: DVec3) -> usize {
-        let a = d.abs();
-        if a.x >= a.y && a.x >= a.z {
-            if d.x > 0.0 { 0 } else { 1 }
-        } else if a.y >= a.z {
-            if d.y > 0.0 { 2 } else { 3 }
-        } else if d.z > 0.0 {
-            4
-        } else {
-            5
-        }
-    }
-
     /// The second pass at one point with unit normal `n`: the fraction of the
     /// `kernel × kernel` texels around the point's texel whose stored depth is not
     /// nearer than the point's depth less the bias (`bias` in slope-scaled texels).
     pub fn lookup(&self, p: DVec3, n: DVec3, bias: f64, kernel: u32) -> f32 {
-        let face = &self.faces[Self::face_of(p - self.light)];
+        let face = &self.faces[face_of(p - self.light)];
         let eye = face.view.to_eye(p);
         let (x, y) = face.view.project(eye);
         let size = self.resolution as i64;
@@ -149,10 +109,4 @@ pub fn visibility(scene: &Scene, view: &View, surface: &VisibleSurface, light: D
             }
         })
         .collect()
-}
-
-/// The diagonal of the scene's bounding box.
-fn scene_extent(scene: &Scene) -> f64 {
-    let b = crate::geometry::bvh::Aabb::of(scene.polygons.iter().flat_map(|p| p.positions()));
-    (b.max - b.min).length()
 }

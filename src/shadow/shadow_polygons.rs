@@ -27,26 +27,17 @@
 //! perturbation (1e-9 of the face) are dropped. Scene key:
 //! `[shadows] method = "shadow-polygons"`.
 
+use super::cube_faces::{FACES, face_view};
 use super::per_sample;
 use crate::geometry::sutherland_hodgman;
 use crate::geometry::weiler_atherton::{self, Region, area};
 use crate::raster::{DepthPlane, RasterVertex, ScreenPolygon, View, VisibleSurface, covered_spans};
-use crate::scene::{Camera, Scene, Vertex};
+use crate::scene::Scene;
 use glam::{DVec2, DVec3, Vec3};
 use rayon::prelude::*;
 
 /// Coordinates of each light face span [0, FACE_SIZE]².
 const FACE_SIZE: u32 = 1024;
-
-/// Cube face axes and the up vector of each face's view.
-const FACES: [(DVec3, DVec3); 6] = [
-    (DVec3::X, DVec3::Y),
-    (DVec3::NEG_X, DVec3::Y),
-    (DVec3::Y, DVec3::Z),
-    (DVec3::NEG_Y, DVec3::Z),
-    (DVec3::Z, DVec3::Y),
-    (DVec3::NEG_Z, DVec3::Y),
-];
 
 /// A lit detail polygon: contours in object space on its polygon's plane, each with
 /// its sign (+1 outer, −1 hole).
@@ -89,28 +80,12 @@ impl Piece {
     }
 }
 
-/// The light's view through one cube face.
-fn face_view(light: DVec3, axis: DVec3, up: DVec3, near: f64) -> View {
-    let camera = Camera {
-        eye: light,
-        look_at: light + axis,
-        up,
-        fov_y: 90.0,
-        width: FACE_SIZE,
-        height: FACE_SIZE,
-        near,
-    };
-    View::new(&camera, FACE_SIZE, FACE_SIZE)
-}
-
 /// The lit detail polygons of every scene polygon, for a point light at `light`.
 pub fn lit_polygons(scene: &Scene, light: DVec3) -> Vec<Vec<DetailPolygon>> {
-    let bounds = crate::geometry::bvh::Aabb::of(scene.polygons.iter().flat_map(|p| p.positions()));
-    let near = 1e-6 * (bounds.max - bounds.min).length().max(1e-9);
     let per_face: Vec<Vec<(u32, DetailPolygon)>> = FACES
         .par_iter()
-        .map(|&(axis, up)| {
-            let view = face_view(light, axis, up, near);
+        .map(|&face| {
+            let view = face_view(scene, light, face, FACE_SIZE);
             let pieces: Vec<Piece> = scene
                 .polygons
                 .iter()
@@ -243,18 +218,7 @@ fn keyholed(view: &View, id: u32, detail: &DetailPolygon) -> Option<ScreenPolygo
         loop_points.push(contour[0]);
         loop_points.push(anchor);
     }
-    let vertices = loop_points
-        .iter()
-        .map(|&position| {
-            let v = Vertex {
-                position,
-                normal: DVec3::Z,
-                uv: Default::default(),
-            };
-            RasterVertex::new(view, &v, Vec3::ZERO)
-        })
-        .collect();
-    ScreenPolygon::new(view, id, vertices)
+    ScreenPolygon::from_points(view, id, &loop_points)
 }
 
 /// The visibility of the point light at `light` for every sample.

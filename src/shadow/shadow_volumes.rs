@@ -29,9 +29,9 @@ use super::per_sample;
 use super::ray_cast::segment_meets_polygon;
 use crate::geometry::bvh::Aabb;
 use crate::geometry::polygon::{centroid, newell_normal};
-use crate::raster::{RasterVertex, ScreenPolygon, View, VisibleSurface, covered_samples};
-use crate::scene::{Scene, Vertex};
-use glam::{DVec3, Vec3};
+use crate::raster::{ScreenPolygon, View, VisibleSurface, covered_samples};
+use crate::scene::Scene;
+use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
 
@@ -126,19 +126,7 @@ pub fn counts(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3
             |mut count, quad| {
                 let facing = quad.outward.dot(view.eye - quad.corners[0]);
                 let step = if facing > 0.0 { 1 } else { -1 };
-                let vertices = quad
-                    .corners
-                    .iter()
-                    .map(|&position| {
-                        let v = Vertex {
-                            position,
-                            normal: quad.outward,
-                            uv: Default::default(),
-                        };
-                        RasterVertex::new(view, &v, Vec3::ZERO)
-                    })
-                    .collect();
-                let Some(screen) = ScreenPolygon::new(view, 0, vertices) else {
+                let Some(screen) = ScreenPolygon::from_points(view, 0, &quad.corners) else {
                     return count;
                 };
                 for (x, y) in covered_samples(&screen, surface.width, surface.height) {

@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use glam::{DVec2, DVec3};
-use lumiere::raster::{RasterVertex, ScreenPolygon, View};
+use lumiere::raster::{ScreenPolygon, View};
 use lumiere::scene::{Camera, Vertex};
 
 /// A camera at the origin looking down −z: world (x, y, −d) is eye (x, y, d).
@@ -29,9 +29,5 @@ pub fn vertex(p: DVec3) -> Vertex {
 
 /// The screen polygon of world points seen by `view` (None if out of view).
 pub fn screen_polygon(view: &View, id: u32, points: &[DVec3]) -> Option<ScreenPolygon> {
-    let eye = points
-        .iter()
-        .map(|&p| RasterVertex::new(view, &vertex(p), glam::Vec3::ZERO))
-        .collect();
-    ScreenPolygon::new(view, id, eye)
+    ScreenPolygon::from_points(view, id, points)
 }
