@@ -23,8 +23,8 @@
 //! its own. Fragment vertices are carried back by intersecting the line from the
 //! light through them with the source polygon's plane. A region with holes enters the
 //! eye's scan-line pass as one polygon whose contours are joined by doubled bridge
-//! edges, which the even-odd sweep ignores. Fragments thinner than the clipper's
-//! perturbation (1e-9 of the face) are dropped. Scene key:
+//! edges, which the even-odd sweep ignores. Fragments smaller than 1e-9 of a face's
+//! area (debris of the clipper's perturbation) are dropped. Scene key:
 //! `[shadows] method = "shadow-polygons"`.
 
 use super::cube_faces::{FACES, face_view};
