@@ -15,6 +15,7 @@ pub mod render;
 pub mod scene;
 pub mod shading;
 pub mod shadow;
+pub mod texture;
 
 use anyhow::{Context, Result};
 use scene::resources::{Directory, Layered};

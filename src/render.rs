@@ -2,10 +2,11 @@
 //! terms, shading, and the box filter down to pixels.
 
 use crate::output::Image;
-use crate::raster::{ScreenPolygon, View, VisibleSurface, prepare, rasterize};
+use crate::raster::{ScreenPolygon, ToPrepare, View, VisibleSurface, prepare, rasterize};
 use crate::scene::Scene;
 use crate::shading::{shade, vertex_colors};
 use crate::shadow::Visibility;
+use crate::texture::Interpolation;
 use glam::Vec3;
 
 /// The visible surface of `scene` on its sample grid (pixels × supersample).
@@ -19,7 +20,12 @@ pub fn visible_surface(scene: &Scene) -> (View, VisibleSurface) {
             .iter()
             .zip(&colors)
             .enumerate()
-            .map(|(id, (p, c))| (id as u32, p.vertices.as_slice(), c.as_slice())),
+            .map(|(id, (p, c))| ToPrepare {
+                id: id as u32,
+                vertices: &p.vertices,
+                colors: c,
+                affine_uv: scene.materials[p.material].interpolation == Interpolation::Affine,
+            }),
     );
     let surface = rasterize(&polygons, view.width, view.height);
     (view, surface)
@@ -30,11 +36,12 @@ pub fn visible_surface(scene: &Scene) -> (View, VisibleSurface) {
 pub fn screen_polygons(scene: &Scene, view: &View) -> Vec<ScreenPolygon> {
     prepare(
         view,
-        scene
-            .polygons
-            .iter()
-            .enumerate()
-            .map(|(id, p)| (id as u32, p.vertices.as_slice(), &[][..])),
+        scene.polygons.iter().enumerate().map(|(id, p)| ToPrepare {
+            id: id as u32,
+            vertices: &p.vertices,
+            colors: &[],
+            affine_uv: false,
+        }),
     )
 }
 

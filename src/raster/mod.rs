@@ -22,7 +22,8 @@ pub mod zbuffer;
 
 pub use edge_table::{EdgeTable, FIXED_ONE};
 pub use project::{
-    ATTRIBUTES, Attributes, DepthPlane, RasterVertex, ScreenPolygon, ScreenVertex, prepare,
+    ATTRIBUTES, Attributes, DepthPlane, RasterVertex, ScreenPolygon, ScreenVertex, ToPrepare, UV,
+    UvGradient, prepare,
 };
 pub use view::View;
 pub use visible_surface::{NO_POLYGON, Sample, VisibleSurface};

@@ -5,7 +5,7 @@
 use super::View;
 use crate::geometry::sutherland_hodgman::{Lerp, clip};
 use crate::scene::Vertex;
-use glam::{DVec3, Vec3};
+use glam::{DVec2, DVec3, Vec3};
 
 /// Number of interpolated attributes: world position (3), shading normal (3),
 /// texture coordinates (2), vertex colour (3).
@@ -80,12 +80,16 @@ impl DepthPlane {
         self.a * x + self.b * y + self.c
     }
 
-    /// Newell's plane through screen points (x, y, ζ); `None` when the polygon is
-    /// seen edge-on (no screen area).
-    fn through(vertices: &[ScreenVertex]) -> Option<DepthPlane> {
+    /// Newell's plane through screen points (x, y, value): the affine function of
+    /// the screen position a planar polygon's value follows; `None` when the polygon
+    /// is seen edge-on (no screen area).
+    fn through(
+        vertices: &[ScreenVertex],
+        value: impl Fn(&ScreenVertex) -> f64,
+    ) -> Option<DepthPlane> {
         let points: Vec<DVec3> = vertices
             .iter()
-            .map(|v| DVec3::new(v.x, v.y, v.zeta))
+            .map(|v| DVec3::new(v.x, v.y, value(v)))
             .collect();
         let n = crate::geometry::polygon::newell_normal(&points);
         if n.z == 0.0 || !n.z.is_finite() {
@@ -101,6 +105,38 @@ impl DepthPlane {
     }
 }
 
+/// Index of u among the attributes (v follows).
+pub const UV: usize = 6;
+
+/// How a polygon's texture coordinates vary across the screen, for the footprint of
+/// a sample in the texture (mip-map level selection): their exact screen derivatives.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UvGradient {
+    /// ζ = 1/z, and u and v as the scan-line pass steps them: u/z and v/z
+    /// (perspective-correct), or u and v themselves (affine).
+    pub zeta: DepthPlane,
+    pub u: DepthPlane,
+    pub v: DepthPlane,
+    pub affine: bool,
+}
+
+impl UvGradient {
+    /// [∂(u, v)/∂x, ∂(u, v)/∂y] at screen point (x, y) where the coordinates are `uv`.
+    /// Perspective: u = (u/z) / ζ, so ∂u/∂x = (∂(u/z)/∂x − u ∂ζ/∂x) / ζ.
+    pub fn derivatives(&self, x: f64, y: f64, uv: DVec2) -> [DVec2; 2] {
+        let (u, v) = (&self.u, &self.v);
+        if self.affine {
+            return [DVec2::new(u.a, v.a), DVec2::new(u.b, v.b)];
+        }
+        let zeta = self.zeta.zeta(x, y);
+        let z = &self.zeta;
+        [
+            DVec2::new(u.a - uv.x * z.a, v.a - uv.y * z.a) / zeta,
+            DVec2::new(u.b - uv.x * z.b, v.b - uv.y * z.b) / zeta,
+        ]
+    }
+}
+
 /// A polygon ready for the scan-line pass. `id` is what the visible-surface buffer
 /// records (the scene polygon id).
 #[derive(Clone, Debug)]
@@ -108,6 +144,8 @@ pub struct ScreenPolygon {
     pub id: u32,
     pub vertices: Vec<ScreenVertex>,
     pub plane: DepthPlane,
+    /// Texture coordinates are stepped affinely in screen space (not divided by z).
+    pub affine_uv: bool,
 }
 
 impl ScreenPolygon {
@@ -151,22 +189,66 @@ impl ScreenPolygon {
                 }
             })
             .collect();
-        let plane = DepthPlane::through(&vertices)?;
+        let plane = DepthPlane::through(&vertices, |v| v.zeta)?;
         Some(ScreenPolygon {
             id,
             vertices,
             plane,
+            affine_uv: false,
         })
+    }
+
+    /// The same polygon with its texture coordinates interpolated affinely in screen
+    /// space (stepped as u, v rather than u/z, v/z): the course's warping demonstration.
+    pub fn with_affine_uv(mut self) -> ScreenPolygon {
+        for v in &mut self.vertices {
+            v.attributes_over_z[UV] /= v.zeta;
+            v.attributes_over_z[UV + 1] /= v.zeta;
+        }
+        self.affine_uv = true;
+        self
+    }
+
+    /// The texture coordinates' screen gradient (planar polygon: exact).
+    pub fn uv_gradient(&self) -> UvGradient {
+        let fit = |k: usize| {
+            DepthPlane::through(&self.vertices, |v| v.attributes_over_z[k]).unwrap_or(DepthPlane {
+                a: 0.0,
+                b: 0.0,
+                c: 0.0,
+            })
+        };
+        UvGradient {
+            zeta: self.plane,
+            u: fit(UV),
+            v: fit(UV + 1),
+            affine: self.affine_uv,
+        }
     }
 }
 
-/// Screen polygons of world polygons given as (id, vertices, vertex colours).
+/// A world polygon to prepare: its id, vertices, vertex colours (may be empty) and
+/// whether its texture coordinates are interpolated affinely.
+pub struct ToPrepare<'a> {
+    pub id: u32,
+    pub vertices: &'a [Vertex],
+    pub colors: &'a [Vec3],
+    pub affine_uv: bool,
+}
+
+/// Screen polygons of world polygons.
 pub fn prepare<'a>(
     view: &View,
-    polygons: impl Iterator<Item = (u32, &'a [Vertex], &'a [Vec3])>,
+    polygons: impl Iterator<Item = ToPrepare<'a>>,
 ) -> Vec<ScreenPolygon> {
     polygons
-        .filter_map(|(id, vertices, colors)| {
+        .filter_map(|p| {
+            let ToPrepare {
+                id,
+                vertices,
+                colors,
+                affine_uv,
+            } = p;
             let eye = vertices
                 .iter()
                 .enumerate()
@@ -174,7 +256,12 @@ pub fn prepare<'a>(
                     RasterVertex::new(view, v, colors.get(k).copied().unwrap_or_default())
                 })
                 .collect();
-            ScreenPolygon::new(view, id, eye)
+            let screen = ScreenPolygon::new(view, id, eye)?;
+            Some(if affine_uv {
+                screen.with_affine_uv()
+            } else {
+                screen
+            })
         })
         .collect()
 }

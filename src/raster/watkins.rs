@@ -19,29 +19,40 @@
 //! table exactly as a full sweep would have it (see `edge_table`).
 
 use super::edge_table::{Edge, EdgeTable, FIXED_ONE, first_pixel_at_or_after};
-use super::project::{ATTRIBUTES, Attributes};
+use super::project::{ATTRIBUTES, Attributes, UV};
 use super::{Sample, ScreenPolygon, VisibleSurface};
-use glam::{DVec3, Vec2, Vec3};
+use glam::{DVec2, DVec3, Vec3};
 use rayon::prelude::*;
 
 const BAND_ROWS: u32 = 8;
 
 /// The visible surface at every sample of a `width × height` grid.
 pub fn rasterize(polygons: &[ScreenPolygon], width: u32, height: u32) -> VisibleSurface {
-    let samples = sweep::<_, _, true>(polygons, width, height, Sample::EMPTY, |id, depth, a, z| {
+    let samples = sweep::<_, _, true>(polygons, width, height, Sample::EMPTY, |p, depth, a, z| {
+        // Affine texture coordinates are stepped as they are, not over z.
+        let uv_z = if p.affine_uv { 1.0 } else { z };
         Sample {
-            polygon: id,
+            polygon: p.id,
             depth,
             position: DVec3::new(a[0], a[1], a[2]) * z,
             normal: DVec3::new(a[3], a[4], a[5]).normalize_or_zero().as_vec3(),
-            uv: Vec2::new((a[6] * z) as f32, (a[7] * z) as f32),
+            uv: DVec2::new(a[UV] * uv_z, a[UV + 1] * uv_z),
             color: Vec3::new((a[8] * z) as f32, (a[9] * z) as f32, (a[10] * z) as f32),
         }
     });
+    let mut uv_gradients = Vec::new();
+    for p in polygons {
+        let id = p.id as usize;
+        if uv_gradients.len() <= id {
+            uv_gradients.resize(id + 1, None);
+        }
+        uv_gradients[id] = Some(p.uv_gradient());
+    }
     VisibleSurface {
         width,
         height,
         samples,
+        uv_gradients,
     }
 }
 
@@ -53,7 +64,7 @@ pub fn rasterize_depth(polygons: &[ScreenPolygon], width: u32, height: u32) -> V
     })
 }
 
-/// The sweep, writing `write(id, depth, attributes over z, z)` at each sample where
+/// The sweep, writing `write(polygon, depth, attributes over z, z)` at each sample where
 /// a polygon is visible and `empty` elsewhere; with `ATTRIBUTES_USED` false the
 /// attributes are not stepped (a depth-only pass).
 fn sweep<S: Copy + Send + Sync, W, const ATTRIBUTES_USED: bool>(
@@ -64,7 +75,7 @@ fn sweep<S: Copy + Send + Sync, W, const ATTRIBUTES_USED: bool>(
     write: W,
 ) -> Vec<S>
 where
-    W: Fn(u32, f64, &Attributes, f64) -> S + Sync,
+    W: Fn(&ScreenPolygon, f64, &Attributes, f64) -> S + Sync,
 {
     let table = EdgeTable::build(polygons, height);
     // Filled in parallel: the first touch of a large buffer costs as much as the sweep.
@@ -249,7 +260,11 @@ fn insertion_sort(active: &mut [(u32, Edge)]) {
 }
 
 /// Decides the span [i0, i1] and writes its samples.
-fn resolve_span<S, W: Fn(u32, f64, &Attributes, f64) -> S, const ATTRIBUTES_USED: bool>(
+fn resolve_span<
+    S,
+    W: Fn(&ScreenPolygon, f64, &Attributes, f64) -> S,
+    const ATTRIBUTES_USED: bool,
+>(
     i0: i64,
     i1: i64,
     inside: &[Inside],
@@ -303,7 +318,7 @@ fn nearest(inside: &[Inside], x: f64, y: f64, polygons: &[ScreenPolygon]) -> Ins
 /// start at i0 (interpolated between the polygon's own crossings) and step by a
 /// constant increment per pixel, as in Watkins; each sample divides by ζ for the
 /// perspective-correct value and takes its depth from the polygon's plane.
-fn fill_run<S, W: Fn(u32, f64, &Attributes, f64) -> S, const ATTRIBUTES_USED: bool>(
+fn fill_run<S, W: Fn(&ScreenPolygon, f64, &Attributes, f64) -> S, const ATTRIBUTES_USED: bool>(
     c: &Inside,
     i0: i64,
     i1: i64,
@@ -326,7 +341,7 @@ fn fill_run<S, W: Fn(u32, f64, &Attributes, f64) -> S, const ATTRIBUTES_USED: bo
     for i in i0..=i1 {
         let x = i as f64 + 0.5;
         let depth = 1.0 / polygon.plane.zeta(x, span.y);
-        row[i as usize] = (span.write)(polygon.id, depth, &a, 1.0 / zeta);
+        row[i as usize] = (span.write)(polygon, depth, &a, 1.0 / zeta);
         if ATTRIBUTES_USED {
             zeta += dzeta;
             for k in 0..ATTRIBUTES {

@@ -5,14 +5,17 @@ use super::file::{LightFile, ObjectFile, SceneFile, ShapeKind};
 use super::resources::Resources;
 use super::shapes::{self, Faces};
 use super::{
-    AreaLight, Light, Material, Object, PointLight, Polygon, RenderSettings, Scene, ShadowSettings,
-    materials, obj, transform, validate,
+    AreaLight, Light, Material, Object, ObjectFrame, PointLight, Polygon, RenderSettings, Scene,
+    ShadowSettings, materials, obj, textures, transform, validate,
 };
 use crate::geometry::polygon::{area, centroid, newell_normal, non_planarity};
+use crate::texture::Texture;
+use crate::texture::mapping::Mapping;
 use anyhow::{Context, Result, anyhow, bail, ensure};
-use glam::{DVec3, Vec3};
+use glam::{DMat4, DVec3};
 use std::collections::HashMap;
 use std::path::Path;
+use std::sync::Arc;
 
 /// Default segment count of spheres and cylinders.
 const DEFAULT_RESOLUTION: u32 = 32;
@@ -55,9 +58,21 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         post_pass: s.post_pass,
     };
 
-    let mut builder = Builder::default();
+    let mut builder = Builder {
+        eye: camera.eye,
+        ..Default::default()
+    };
+    for (name, t) in &file.textures {
+        builder
+            .texture_index
+            .insert(name.clone(), builder.textures.len());
+        builder
+            .textures
+            .push(Arc::new(textures::load(name, t, resources)?));
+    }
     for (name, m) in &file.materials {
-        builder.add_material(materials::from_file(name, m)?);
+        let material = materials::from_file(name, m, &builder.texture_index)?;
+        builder.add_material(material);
     }
     for (index, object) in file.objects.iter().enumerate() {
         builder
@@ -74,6 +89,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         }
     }
     lights.extend(builder.area_lights());
+    builder.warn_untextured_modes(render.shading);
 
     Ok(Scene {
         camera,
@@ -83,12 +99,17 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         objects: builder.objects,
         polygons: builder.polygons,
         lights,
+        textures: builder.textures,
         warnings: builder.warnings,
     })
 }
 
 #[derive(Default)]
 struct Builder {
+    /// The camera's eye (the reflected-ray texture projector depends on it).
+    eye: DVec3,
+    textures: Vec<Arc<Texture>>,
+    texture_index: HashMap<String, usize>,
     materials: Vec<Material>,
     material_index: HashMap<String, usize>,
     objects: Vec<Object>,
@@ -148,12 +169,29 @@ impl Builder {
             .as_deref()
             .ok_or_else(|| anyhow!("{name}: a {:?} needs a `material`", o.shape))?;
         let material = self.material(material_name)?;
-        let object = self.push_object(name, o);
-        for mut face in faces {
-            transform::apply(&m, &mut face);
-            self.push_polygon(face, material, object);
+        let own_mapping = match o.shape {
+            ShapeKind::Sphere => Some(shapes::sphere_mapping()),
+            ShapeKind::Cylinder => Some(shapes::cylinder_mapping()),
+            _ => None,
+        };
+        let frame = object_frame(&m, &faces, own_mapping);
+        let object = self.push_object(name, o, frame);
+        for face in faces {
+            self.place_face(face, material, object);
         }
         Ok(())
+    }
+
+    /// A face in modelling coordinates: texture coordinates from its material's
+    /// mapping if it has one, then into the world.
+    fn place_face(&mut self, mut face: Vec<super::Vertex>, material: usize, object: usize) {
+        let frame = &self.objects[object].frame;
+        if let Some(mapping) = &self.materials[material].mapping {
+            let eye = frame.to_object.transform_point3(self.eye);
+            textures::map_vertices(mapping, &mut face, frame, eye);
+        }
+        transform::apply(&frame.to_world, &mut face);
+        self.push_polygon(face, material, object);
     }
 
     fn add_obj(
@@ -176,8 +214,9 @@ impl Builder {
                 self.add_material(materials::from_mtl(mtl)?);
             }
         }
+        let frame = object_frame(m, &model.faces, None);
         let mut objects: HashMap<String, usize> = HashMap::new();
-        for ((mut face, material), part) in model
+        for ((face, material), part) in model
             .faces
             .into_iter()
             .zip(model.face_materials)
@@ -193,21 +232,21 @@ impl Builder {
             let object = match objects.get(&part) {
                 Some(&k) => k,
                 None => {
-                    let k = self.push_object(format!("{name}/{part}"), o);
+                    let k = self.push_object(format!("{name}/{part}"), o, frame.clone());
                     objects.insert(part, k);
                     k
                 }
             };
-            transform::apply(m, &mut face);
-            self.push_polygon(face, material, object);
+            self.place_face(face, material, object);
         }
         Ok(())
     }
 
-    fn push_object(&mut self, name: String, o: &ObjectFile) -> usize {
+    fn push_object(&mut self, name: String, o: &ObjectFile, frame: ObjectFrame) -> usize {
         self.objects.push(Object {
             name,
             shading: o.shading,
+            frame,
         });
         self.objects.len() - 1
     }
@@ -250,20 +289,37 @@ impl Builder {
                 let name = format!("area light {index}");
                 let material = self.add_material(Material {
                     name: name.clone(),
-                    diffuse: Vec3::ZERO,
-                    specular: Vec3::ZERO,
                     exponent: 1.0,
                     emission: validate::colour("radiance", *radiance)?,
+                    ..Default::default()
                 });
                 self.objects.push(Object {
                     name,
                     shading: None,
+                    frame: ObjectFrame::identity(),
                 });
                 let object = self.objects.len() - 1;
                 for face in shapes::polygon(&corners) {
                     self.push_polygon(face, material, object);
                 }
                 Ok(None)
+            }
+        }
+    }
+
+    /// Textures and bump maps are applied per sample, in Phong shading only.
+    fn warn_untextured_modes(&mut self, default: super::ShadingMode) {
+        for (k, object) in self.objects.iter().enumerate() {
+            let mode = object.shading.unwrap_or(default);
+            let textured = self
+                .polygons
+                .iter()
+                .any(|p| p.object == k && self.materials[p.material].is_textured());
+            if textured && mode != super::ShadingMode::Phong {
+                self.warnings.push(format!(
+                    "{}: textures and bump maps apply in phong shading only; {mode:?} shading shows the untextured material",
+                    object.name
+                ));
             }
         }
     }
@@ -286,6 +342,22 @@ impl Builder {
                 })
             })
             .collect()
+    }
+}
+
+/// The frame of an object whose faces (in modelling coordinates) `m` takes into the
+/// world.
+fn object_frame(m: &DMat4, faces: &Faces, own_mapping: Option<Mapping>) -> ObjectFrame {
+    let points: Vec<DVec3> = faces.iter().flatten().map(|v| v.position).collect();
+    ObjectFrame {
+        to_world: *m,
+        to_object: m.inverse(),
+        centroid: if points.is_empty() {
+            DVec3::ZERO
+        } else {
+            centroid(&points)
+        },
+        own_mapping,
     }
 }
 

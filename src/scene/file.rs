@@ -21,6 +21,8 @@ pub struct SceneFile {
     pub objects: Vec<ObjectFile>,
     #[serde(default)]
     pub shadows: ShadowsFile,
+    #[serde(default)]
+    pub textures: BTreeMap<String, TextureFile>,
 }
 
 /// `[shadows]`: which method, and the shadow map's settings.
@@ -128,6 +130,82 @@ pub struct MaterialFile {
     pub exponent: f64,
     #[serde(default)]
     pub emission: Vec3File,
+    /// Name of a texture multiplying `diffuse`.
+    pub diffuse_texture: Option<String>,
+    /// Name of a texture multiplying `specular`.
+    pub specular_texture: Option<String>,
+    /// Name of a texture read as a bump height (Blinn).
+    pub bump_texture: Option<String>,
+    /// The height, in scene units, of a bump texture value of 1.
+    pub bump_height: Option<f64>,
+    /// How texture coordinates are found inside polygons.
+    #[serde(default)]
+    pub interpolation: crate::texture::Interpolation,
+    /// Where texture coordinates come from: a two-part mapping, or (absent) the
+    /// mesh's own coordinates.
+    pub mapping: Option<MappingFile>,
+}
+
+/// `[textures.NAME]`: an image file or a procedural pattern, and how it is sampled.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TextureFile {
+    /// PNG or JPEG file, relative to the scene file.
+    pub image: Option<String>,
+    pub procedural: Option<ProceduralKind>,
+    /// Procedural: cells along each side of the unit square.
+    pub cells: Option<u32>,
+    /// Procedural: the two colours.
+    pub colors: Option<[Vec3File; 2]>,
+    /// Grid: line width in cell units.
+    pub line: Option<f64>,
+    /// Noise: the lattice's seed.
+    pub seed: Option<u32>,
+    /// Procedural: texels along each side when sampled into an image.
+    pub resolution: Option<u32>,
+    #[serde(default)]
+    pub wrap: crate::texture::Wrap,
+    #[serde(default)]
+    pub filter: crate::texture::Filter,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ProceduralKind {
+    Checkerboard,
+    Grid,
+    Noise,
+}
+
+/// A two-part mapping (Bier & Sloan): intermediate surface, projector and frame, in
+/// the object's modelling coordinates.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MappingFile {
+    pub surface: crate::texture::mapping::IntermediateSurface,
+    #[serde(default)]
+    pub projector: crate::texture::mapping::Projector,
+    #[serde(default)]
+    pub centre: Vec3File,
+    #[serde(default = "y_up")]
+    pub axis: Vec3File,
+    #[serde(default = "x_axis")]
+    pub reference: Vec3File,
+    #[serde(default = "ones")]
+    pub size: [f64; 2],
+    #[serde(default = "one")]
+    pub height: f64,
+    #[serde(default = "one")]
+    pub radius: f64,
+    #[serde(default = "ones")]
+    pub repeat: [f64; 2],
+}
+
+fn x_axis() -> Vec3File {
+    [1.0, 0.0, 0.0]
+}
+fn ones() -> [f64; 2] {
+    [1.0, 1.0]
 }
 
 #[derive(Debug, Deserialize)]

@@ -1,19 +1,66 @@
 //! Materials from the scene file and from MTL files.
 
-use super::Material;
 use super::file::MaterialFile;
 use super::validate::colour;
-use anyhow::{Result, ensure};
+use super::{Bump, Material, textures};
+use anyhow::{Result, bail, ensure};
 use glam::Vec3;
+use std::collections::HashMap;
 
-pub fn from_file(name: &str, m: &MaterialFile) -> Result<Material> {
+pub fn from_file(
+    name: &str,
+    m: &MaterialFile,
+    textures: &HashMap<String, usize>,
+) -> Result<Material> {
     let what = |key: &str| format!("materials.{name}.{key}");
+    let texture = |key: &str, given: &Option<String>| -> Result<Option<usize>> {
+        let Some(t) = given else { return Ok(None) };
+        match textures.get(t) {
+            Some(&k) => Ok(Some(k)),
+            None => {
+                let mut known: Vec<&str> = textures.keys().map(String::as_str).collect();
+                known.sort();
+                bail!(
+                    "{}: unknown texture `{t}` (known: {})",
+                    what(key),
+                    if known.is_empty() {
+                        "none".to_string()
+                    } else {
+                        known.join(", ")
+                    }
+                )
+            }
+        }
+    };
+    let bump = match (texture("bump_texture", &m.bump_texture)?, m.bump_height) {
+        (Some(texture), height) => {
+            let height = height.unwrap_or(0.01);
+            ensure!(
+                height.is_finite(),
+                "{} must be a finite number",
+                what("bump_height")
+            );
+            Some(Bump { texture, height })
+        }
+        (None, Some(_)) => bail!("{} needs a bump_texture", what("bump_height")),
+        (None, None) => None,
+    };
+    let mapping = m
+        .mapping
+        .as_ref()
+        .map(|mapping| textures::mapping(&what("mapping"), mapping))
+        .transpose()?;
     let material = Material {
         name: name.to_string(),
         diffuse: colour(&what("diffuse"), m.diffuse)?,
         specular: colour(&what("specular"), m.specular)?,
         exponent: m.exponent as f32,
         emission: colour(&what("emission"), m.emission)?,
+        diffuse_texture: texture("diffuse_texture", &m.diffuse_texture)?,
+        specular_texture: texture("specular_texture", &m.specular_texture)?,
+        bump,
+        mapping,
+        interpolation: m.interpolation,
     };
     ensure!(
         m.exponent.is_finite() && m.exponent >= 0.0,
@@ -33,6 +80,7 @@ pub fn from_mtl(m: &tobj::Material) -> Result<Material> {
         specular: rgb(m.specular),
         exponent: m.shininess.unwrap_or(1.0) as f32,
         emission: rgb(m.emissive),
+        ..Default::default()
     };
     ensure!(
         [material.diffuse, material.specular, material.emission]

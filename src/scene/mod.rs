@@ -12,12 +12,16 @@ mod obj;
 pub mod resources;
 mod shapes;
 pub mod tables;
+mod textures;
 mod transform;
 mod validate;
 
 pub use build::scene_from_table;
 
-use glam::{DVec2, DVec3, Vec3};
+use crate::texture::mapping::Mapping;
+use crate::texture::{Interpolation, Texture};
+use glam::{DMat4, DVec2, DVec3, Vec3};
+use std::sync::Arc;
 
 /// A camera as the scene file gives it: a pinhole looking from `eye` to `look_at`.
 #[derive(Clone, Debug)]
@@ -67,8 +71,8 @@ pub struct ShadowSettings {
     pub post_pass: bool,
 }
 
-/// A surface's reflectance and emission (linear RGB).
-#[derive(Clone, Debug, PartialEq)]
+/// A surface's reflectance and emission (linear RGB), and the textures on it.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Material {
     pub name: String,
     /// Lambertian reflectance ρ: radiance ρ/π × irradiance.
@@ -78,12 +82,47 @@ pub struct Material {
     pub exponent: f32,
     /// Emitted radiance, one-sided along the polygon's normal.
     pub emission: Vec3,
+    /// Indices into `Scene::textures`: colours multiplying `diffuse` and `specular`.
+    pub diffuse_texture: Option<usize>,
+    pub specular_texture: Option<usize>,
+    pub bump: Option<Bump>,
+    /// A two-part mapping giving the texture coordinates (else the mesh's own).
+    pub mapping: Option<Mapping>,
+    pub interpolation: Interpolation,
+}
+
+/// A bump map: a texture read as a height, and the height of a value of 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bump {
+    pub texture: usize,
+    pub height: f64,
 }
 
 impl Material {
     pub fn is_emitter(&self) -> bool {
         self.emission.max_element() > 0.0
     }
+
+    pub fn is_textured(&self) -> bool {
+        self.diffuse_texture.is_some() || self.specular_texture.is_some() || self.bump.is_some()
+    }
+
+    /// What the light model needs, before textures.
+    pub fn reflectance(&self) -> Reflectance {
+        Reflectance {
+            diffuse: self.diffuse,
+            specular: self.specular,
+            exponent: self.exponent,
+        }
+    }
+}
+
+/// The reflectance at one surface point: a material's, textures applied.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reflectance {
+    pub diffuse: Vec3,
+    pub specular: Vec3,
+    pub exponent: f32,
 }
 
 /// A polygon vertex with the attributes the rasterizer interpolates.
@@ -120,6 +159,38 @@ pub struct Object {
     pub name: String,
     /// Shading mode of this object, overriding the render setting.
     pub shading: Option<ShadingMode>,
+    /// Its modelling frame: texture mappings are given in it, so textures and bumps
+    /// move with the object.
+    pub frame: ObjectFrame,
+}
+
+/// The transform between an object's modelling coordinates and the world.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjectFrame {
+    pub to_world: DMat4,
+    pub to_object: DMat4,
+    /// Centroid of the object's vertices, in modelling coordinates (Bier and Sloan's
+    /// centroid projector).
+    pub centroid: DVec3,
+    /// The analytic parameterisation behind a built-in sphere's or cylinder's own
+    /// texture coordinates (for bump mapping's surface derivatives).
+    pub own_mapping: Option<Mapping>,
+}
+
+impl ObjectFrame {
+    pub fn identity() -> ObjectFrame {
+        ObjectFrame {
+            to_world: DMat4::IDENTITY,
+            to_object: DMat4::IDENTITY,
+            centroid: DVec3::ZERO,
+            own_mapping: None,
+        }
+    }
+
+    /// A world normal in modelling coordinates (by the inverse transpose).
+    pub fn normal_to_object(&self, n: DVec3) -> DVec3 {
+        glam::DMat3::from_mat4(self.to_world).transpose() * n
+    }
 }
 
 /// An isotropic point light with inverse-square falloff.
@@ -159,6 +230,7 @@ pub struct Scene {
     pub objects: Vec<Object>,
     pub polygons: Vec<Polygon>,
     pub lights: Vec<Light>,
+    pub textures: Vec<Arc<Texture>>,
     /// Things the user should know that do not stop the render (dropped faces…).
     pub warnings: Vec<String>,
 }

@@ -4,6 +4,7 @@
 //! Faces run counter-clockwise seen from outside.
 
 use super::Vertex;
+use crate::texture::mapping::{Frame, IntermediateSurface, Mapping, Projector};
 use glam::{DVec2, DVec3};
 use std::f64::consts::{PI, TAU};
 
@@ -109,6 +110,30 @@ pub fn sphere(resolution: u32, smooth: bool) -> Faces {
         }
     }
     faces
+}
+
+/// The spherical mapping the sphere's own texture coordinates follow: axis y, θ = 0
+/// along x (so `material.mapping` with these values reproduces them).
+pub fn sphere_mapping() -> Mapping {
+    own_mapping(IntermediateSurface::Sphere, DVec3::ZERO)
+}
+
+/// The cylindrical mapping of the cylinder's sides: axis y from its base at y = −0.5,
+/// height 1.
+pub fn cylinder_mapping() -> Mapping {
+    own_mapping(IntermediateSurface::Cylinder, DVec3::new(0.0, -0.5, 0.0))
+}
+
+fn own_mapping(surface: IntermediateSurface, centre: DVec3) -> Mapping {
+    Mapping {
+        surface,
+        projector: Projector::Surface,
+        frame: Frame::new(centre, DVec3::Y, DVec3::X).expect("a valid frame"),
+        size: DVec2::ONE,
+        height: 1.0,
+        radius: 1.0,
+        repeat: DVec2::ONE,
+    }
 }
 
 /// A cylinder of `resolution` side quads, optionally closed by two polygons.

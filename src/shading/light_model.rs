@@ -10,7 +10,7 @@
 //! point at its centroid with intensity L A cos θ_light, an approximation.
 
 use super::lambert_contour::projected_solid_angle;
-use crate::scene::{AreaLight, Light, Material};
+use crate::scene::{AreaLight, Light, Reflectance};
 use glam::{DVec3, Vec3};
 use std::f32::consts::PI;
 
@@ -24,7 +24,7 @@ pub struct SurfacePoint {
 }
 
 /// Radiance towards the eye due to `light`, ignoring anything in between.
-pub fn reflected(point: &SurfacePoint, material: &Material, light: &Light) -> Vec3 {
+pub fn reflected(point: &SurfacePoint, material: &Reflectance, light: &Light) -> Vec3 {
     match light {
         Light::Point(l) => {
             let d = l.position - point.position;
@@ -37,7 +37,7 @@ pub fn reflected(point: &SurfacePoint, material: &Material, light: &Light) -> Ve
 /// Light from a point source at offset `d` with intensity `intensity`.
 fn point_contribution(
     point: &SurfacePoint,
-    material: &Material,
+    material: &Reflectance,
     d: DVec3,
     intensity: Vec3,
 ) -> Vec3 {
@@ -52,7 +52,7 @@ fn point_contribution(
     (material.diffuse / PI + specular_brdf(point, material, l)) * irradiance
 }
 
-fn specular_brdf(point: &SurfacePoint, material: &Material, l: DVec3) -> Vec3 {
+fn specular_brdf(point: &SurfacePoint, material: &Reflectance, l: DVec3) -> Vec3 {
     if material.specular == Vec3::ZERO {
         return Vec3::ZERO;
     }
@@ -62,7 +62,7 @@ fn specular_brdf(point: &SurfacePoint, material: &Material, l: DVec3) -> Vec3 {
     material.specular * (e + 2.0) / (2.0 * PI) * cos_alpha.powf(e)
 }
 
-fn area_contribution(point: &SurfacePoint, material: &Material, light: &AreaLight) -> Vec3 {
+fn area_contribution(point: &SurfacePoint, material: &Reflectance, light: &AreaLight) -> Vec3 {
     let c = light.centre;
     // One-sided emitter: points behind its plane get nothing.
     if (point.position - c).dot(light.normal) <= 0.0 {

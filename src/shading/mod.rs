@@ -1,10 +1,11 @@
 //! Shading: the light model (Lambert diffuse, normalised Phong specular), the exact
 //! irradiance of polygonal emitters (Lambert's contour formula), the three shading
 //! modes (flat, Gouraud, Phong) and the pass that turns a visible-surface buffer
-//! into linear radiance.
+//! into linear radiance, with textures and bump maps (`textured`).
 
 pub mod lambert_contour;
 pub mod light_model;
 mod pass;
+mod textured;
 
 pub use pass::{shade, vertex_colors};

@@ -10,6 +10,7 @@
 //! normal.
 
 use super::light_model::{SurfacePoint, reflected};
+use super::textured::{polygon_tangents, textured_point};
 use crate::geometry::polygon::centroid;
 use crate::raster::{View, VisibleSurface};
 use crate::scene::{Polygon, Scene, ShadingMode, Vertex};
@@ -32,6 +33,7 @@ pub fn shade(
             (scene.shading_of(id) == ShadingMode::Flat).then(|| flat_radiance(scene, view, p))
         })
         .collect();
+    let tangents = polygon_tangents(scene);
     surface
         .samples
         .par_iter()
@@ -50,7 +52,11 @@ pub fn shade(
                 ShadingMode::Flat => flat[id].unwrap_or_default() * visibility.mean(k),
                 ShadingMode::Gouraud => s.color * visibility.mean(k),
                 ShadingMode::Phong => {
-                    let n = s.normal.as_dvec3();
+                    let (reflectance, n) = if material.is_textured() {
+                        textured_point(scene, view.eye, surface, k, &tangents)
+                    } else {
+                        (material.reflectance(), s.normal.as_dvec3())
+                    };
                     let point = SurfacePoint {
                         position: s.position,
                         normal: if front { n } else { -n },
@@ -60,7 +66,9 @@ pub fn shade(
                         .lights
                         .iter()
                         .enumerate()
-                        .map(|(l, light)| reflected(&point, material, light) * visibility.of(l, k))
+                        .map(|(l, light)| {
+                            reflected(&point, &reflectance, light) * visibility.of(l, k)
+                        })
                         .sum()
                 }
             };
@@ -88,11 +96,11 @@ fn radiance_at(
         normal: normal * side,
         to_eye,
     };
-    let material = &scene.materials[polygon.material];
+    let reflectance = scene.materials[polygon.material].reflectance();
     scene
         .lights
         .iter()
-        .map(|l| reflected(&point, material, l))
+        .map(|l| reflected(&point, &reflectance, l))
         .sum()
 }
 

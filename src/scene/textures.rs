@@ -1,0 +1,139 @@
+//! Textures and mappings from the scene file: `[textures.NAME]` loaded or generated,
+//! `mapping` tables turned into two-part mappings, and per-vertex texture coordinates
+//! computed from a material's mapping (the "projection function unknown" case, where
+//! the scan-line pass interpolates them).
+
+use super::file::{MappingFile, ProceduralKind, TextureFile};
+use super::resources::Resources;
+use super::validate::{colour, vec3};
+use super::{ObjectFrame, Vertex};
+use crate::texture::mapping::{Frame, Mapping, fix_seam};
+use crate::texture::procedural::Procedural;
+use crate::texture::{Texels, Texture};
+use anyhow::{Context, Result, bail, ensure};
+use glam::{DVec2, DVec3, Vec3};
+use std::path::Path;
+
+/// Default texels per side of a procedural texture sampled into an image.
+const DEFAULT_RESOLUTION: u32 = 256;
+
+pub fn load(name: &str, t: &TextureFile, resources: &dyn Resources) -> Result<Texture> {
+    let what = |key: &str| format!("textures.{name}.{key}");
+    let procedural_keys = [
+        ("cells", t.cells.is_some()),
+        ("colors", t.colors.is_some()),
+        ("line", t.line.is_some()),
+        ("seed", t.seed.is_some()),
+        ("resolution", t.resolution.is_some()),
+    ];
+    let (texels, procedural) = match (&t.image, t.procedural) {
+        (Some(_), Some(_)) => bail!("textures.{name}: give `image` or `procedural`, not both"),
+        (None, None) => bail!("textures.{name}: needs an `image` file or a `procedural` pattern"),
+        (Some(path), None) => {
+            if let Some((key, _)) = procedural_keys.iter().find(|(_, given)| *given) {
+                bail!("{}: applies to procedural textures only", what(key));
+            }
+            let bytes = resources.read(Path::new(path))?;
+            let texels =
+                Texels::decode(&bytes).with_context(|| format!("textures.{name}: {path}"))?;
+            (texels, None)
+        }
+        (None, Some(kind)) => {
+            let p = procedural(name, kind, t)?;
+            let n = t.resolution.unwrap_or(DEFAULT_RESOLUTION);
+            ensure!(
+                (1..=8192).contains(&n),
+                "{} must be between 1 and 8192, got {n}",
+                what("resolution")
+            );
+            (Texels::generate(n, n, |uv| p.color(uv)), Some(p))
+        }
+    };
+    Ok(Texture::new(name, texels, procedural, t.wrap, t.filter))
+}
+
+fn procedural(name: &str, kind: ProceduralKind, t: &TextureFile) -> Result<Procedural> {
+    let what = |key: &str| format!("textures.{name}.{key}");
+    let cells = t.cells.unwrap_or(8);
+    ensure!(
+        (1..=65_536).contains(&cells),
+        "{} must be between 1 and 65536, got {cells}",
+        what("cells")
+    );
+    let colors = match t.colors {
+        Some([a, b]) => [colour(&what("colors"), a)?, colour(&what("colors"), b)?],
+        None => [Vec3::ONE, Vec3::ZERO],
+    };
+    for (key, given, applies) in [
+        ("line", t.line.is_some(), kind == ProceduralKind::Grid),
+        ("seed", t.seed.is_some(), kind == ProceduralKind::Noise),
+    ] {
+        ensure!(
+            !given || applies,
+            "{} does not apply to {kind:?}",
+            what(key)
+        );
+    }
+    Ok(match kind {
+        ProceduralKind::Checkerboard => Procedural::Checkerboard { cells, colors },
+        ProceduralKind::Grid => {
+            let line = t.line.unwrap_or(0.1);
+            ensure!(
+                line > 0.0 && line < 1.0,
+                "{} must be between 0 and 1 (cell units)",
+                what("line")
+            );
+            Procedural::Grid {
+                cells,
+                line,
+                colors,
+            }
+        }
+        ProceduralKind::Noise => Procedural::Noise {
+            cells,
+            seed: t.seed.unwrap_or(0),
+            colors,
+        },
+    })
+}
+
+pub fn mapping(what: &str, m: &MappingFile) -> Result<Mapping> {
+    let frame = Frame::new(
+        vec3(&format!("{what}.centre"), m.centre)?,
+        vec3(&format!("{what}.axis"), m.axis)?,
+        vec3(&format!("{what}.reference"), m.reference)?,
+    )
+    .with_context(|| what.to_string())?;
+    let mapping = Mapping {
+        surface: m.surface,
+        projector: m.projector,
+        frame,
+        size: DVec2::from(m.size),
+        height: m.height,
+        radius: m.radius,
+        repeat: DVec2::from(m.repeat),
+    };
+    mapping.check().with_context(|| what.to_string())?;
+    Ok(mapping)
+}
+
+/// Sets the texture coordinates of a face (in modelling coordinates) from `mapping`:
+/// the mapping at each vertex, the seam and poles fixed so interpolation across the
+/// face stays continuous. `eye` is the eye in modelling coordinates (for the
+/// reflected-ray projector).
+pub fn map_vertices(mapping: &Mapping, face: &mut [Vertex], frame: &ObjectFrame, eye: DVec3) {
+    let mut uvs: Vec<DVec2> = face
+        .iter()
+        .map(|v| {
+            let to_eye = (eye - v.position).normalize_or_zero();
+            mapping.uv(v.position, v.normal, frame.centroid, to_eye)
+        })
+        .collect();
+    if mapping.wraps_in_u() {
+        let on_axis: Vec<bool> = face.iter().map(|v| mapping.on_axis(v.position)).collect();
+        fix_seam(&mut uvs, &on_axis, mapping.repeat.x);
+    }
+    for (v, uv) in face.iter_mut().zip(uvs) {
+        v.uv = uv;
+    }
+}
