@@ -423,3 +423,116 @@ fn a_scene_file_extends_a_catalogue_entry() {
     let left = image.pixels[10 * 20 + 1];
     assert!(left.z > left.x, "{left}");
 }
+
+/// A scene whose quad wears the texture `texture` (a `[textures.t]` body).
+fn textured_scene(texture: &str) -> String {
+    scene(CAMERA, "")
+        .replace(
+            "[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]",
+            "[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\ndiffuse_texture = \"t\"",
+        )
+        .replacen(
+            "[camera]",
+            &format!("[textures.t]\n{texture}\n\n[camera]"),
+            1,
+        )
+}
+
+/// A PNG whose header claims `width × height` (with a valid checksum) and no pixels.
+fn png_header_only(width: u32, height: u32) -> Vec<u8> {
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut crc = !0u32;
+        for &b in bytes {
+            crc ^= b as u32;
+            for _ in 0..8 {
+                crc = if crc & 1 == 1 {
+                    (crc >> 1) ^ 0xEDB8_8320
+                } else {
+                    crc >> 1
+                };
+            }
+        }
+        !crc
+    }
+    let mut ihdr = b"IHDR".to_vec();
+    ihdr.extend(width.to_be_bytes());
+    ihdr.extend(height.to_be_bytes());
+    ihdr.extend([8, 2, 0, 0, 0]);
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    png.extend(13u32.to_be_bytes());
+    png.extend(&ihdr);
+    png.extend(crc32(&ihdr).to_be_bytes());
+    png
+}
+
+#[test]
+fn missing_corrupt_and_empty_texture_images() {
+    let missing = textured_scene("image = \"missing.png\"");
+    render_error(&[("s.toml", &missing)], &["s.toml"], "missing.png");
+
+    let corrupt = textured_scene("image = \"corrupt.png\"");
+    render_error(
+        &[("s.toml", &corrupt), ("corrupt.png", "not an image at all")],
+        &["s.toml"],
+        "corrupt.png",
+    );
+
+    let empty = textured_scene("image = \"empty.png\"");
+    let dir = workspace(&[("s.toml", &empty)]);
+    std::fs::write(dir.path().join("empty.png"), png_header_only(0, 0)).unwrap();
+    let run = lumiere(&["render", "s.toml", "-o", "out.png"], dir.path());
+    assert_clear_error(&run, "empty.png", &dir.path().join("out.png"));
+}
+
+#[test]
+fn bad_textures_and_mappings() {
+    let unknown = textured_scene("procedural = \"checkerboard\"")
+        .replace("diffuse_texture = \"t\"", "diffuse_texture = \"wood\"");
+    render_error(
+        &[("s.toml", &unknown)],
+        &["s.toml"],
+        "unknown texture `wood`",
+    );
+    let neither = textured_scene("wrap = \"clamp\"");
+    render_error(
+        &[("s.toml", &neither)],
+        &["s.toml"],
+        "needs an `image` file or a `procedural`",
+    );
+    let filter = textured_scene("procedural = \"grid\"\nfilter = \"cubic\"");
+    render_error(&[("s.toml", &filter)], &["s.toml"], "filter");
+    let degenerate = textured_scene("procedural = \"grid\"").replace(
+        "diffuse_texture = \"t\"",
+        "diffuse_texture = \"t\"\nmapping = { surface = \"cylinder\", axis = [0.0, 1.0, 0.0], reference = [0.0, 2.0, 0.0] }",
+    );
+    render_error(&[("s.toml", &degenerate)], &["s.toml"], "degenerate frame");
+    let zero_axis = textured_scene("procedural = \"grid\"").replace(
+        "diffuse_texture = \"t\"",
+        "diffuse_texture = \"t\"\nmapping = { surface = \"sphere\", axis = [0.0, 0.0, 0.0] }",
+    );
+    render_error(
+        &[("s.toml", &zero_axis)],
+        &["s.toml"],
+        "axis is a zero vector",
+    );
+    let zero_size = textured_scene("procedural = \"grid\"").replace(
+        "diffuse_texture = \"t\"",
+        "diffuse_texture = \"t\"\nmapping = { surface = \"plane\", size = [0.0, 1.0] }",
+    );
+    render_error(
+        &[("s.toml", &zero_size)],
+        &["s.toml"],
+        "size must be positive",
+    );
+}
+
+#[test]
+fn a_textured_scene_renders() {
+    let card = include_bytes!("../algorithms/textures/test-card.png");
+    let text = textured_scene("image = \"card.png\"\nfilter = \"summed-area\"");
+    let dir = workspace(&[("s.toml", &text)]);
+    std::fs::write(dir.path().join("card.png"), card).unwrap();
+    let run = lumiere(&["render", "s.toml", "-o", "out.png"], dir.path());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(dir.path().join("out.png").exists());
+}

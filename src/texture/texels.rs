@@ -5,6 +5,7 @@
 //! top-right; texel (i, j) has row j = 0 at the top of the image and its centre at
 //! u = (i + 0.5) / width, v = 1 − (j + 0.5) / height.
 
+use crate::output::srgb_decode;
 use anyhow::{Context, Result, ensure};
 use glam::{DVec2, Vec3};
 
@@ -56,9 +57,7 @@ impl Texels {
             "the image is {width}x{height}, larger than {MAX_TEXTURE_SIDE} on a side"
         );
         let rgb = image.to_rgb8();
-        let table: Vec<f32> = (0..=255u8)
-            .map(|c| srgb_to_linear(c as f32 / 255.0))
-            .collect();
+        let table: Vec<f32> = (0..=255u8).map(|c| srgb_decode(c as f32 / 255.0)).collect();
         let texels = rgb
             .pixels()
             .map(|p| {
@@ -129,15 +128,6 @@ impl Texels {
     pub fn mean(&self) -> Vec3 {
         let sum: glam::DVec3 = self.texels.iter().map(|t| t.as_dvec3()).sum();
         (sum / self.texels.len() as f64).as_vec3()
-    }
-}
-
-/// The sRGB transfer function, inverted.
-pub fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
     }
 }
 

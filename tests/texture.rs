@@ -1,0 +1,514 @@
+//! Texture mapping, mip-mapping and bump mapping proved against exact references:
+//! mapping round trips, per-pixel interpolation against the exact inverse mapping,
+//! pyramid invariants, filtering error against a supersampled reference, and Blinn's
+//! normals against the normals of the truly displaced surface.
+
+use glam::{DVec2, DVec3, Vec3};
+use lumiere::raster::View;
+use lumiere::render::visible_surface;
+use lumiere::scene::resources::Directory;
+use lumiere::scene::{Scene, scene_from_table, tables};
+use lumiere::texture::bump::perturb;
+use lumiere::texture::mapping::{Frame, IntermediateSurface, Mapping, Projector};
+use lumiere::texture::mip_map::Pyramid;
+use lumiere::texture::{Filter, Texels, Texture, Wrap};
+use lumiere::{Image, catalogue, load_scene, render};
+use proptest::prelude::*;
+use std::f64::consts::{PI, TAU};
+
+fn mapping(surface: IntermediateSurface, frame: Frame, height: f64) -> Mapping {
+    Mapping {
+        surface,
+        projector: Projector::Surface,
+        frame,
+        size: DVec2::ONE,
+        height,
+        radius: 1.0,
+        repeat: DVec2::ONE,
+    }
+}
+
+fn vec3() -> impl Strategy<Value = DVec3> {
+    (-3.0..3.0f64, -3.0..3.0f64, -3.0..3.0f64).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+}
+
+fn frame() -> impl Strategy<Value = Frame> {
+    (vec3(), vec3(), vec3()).prop_filter_map("a non-degenerate frame", |(c, a, r)| {
+        if a.length() < 0.1 || a.normalize().cross(r).length() < 0.1 {
+            return None;
+        }
+        Frame::new(c, a, r).ok()
+    })
+}
+
+proptest! {
+    /// Cylinder: a point (r cos θ, r sin θ, h z) maps to (θ/2π, z) in [0, 1]², and the
+    /// inverse mapping (on the cylinder through the point) gives the point back.
+    #[test]
+    fn cylindrical_round_trip(
+        f in frame(), theta in 0.01..TAU - 0.01, z in 0.0..1.0f64,
+        r in 0.1..4.0f64, h in 0.2..5.0f64,
+    ) {
+        let m = mapping(IntermediateSurface::Cylinder, f, h);
+        let local = DVec3::new(r * theta.cos(), r * theta.sin(), z * h);
+        let p = f.from_local(local);
+        let uv = m.uv(p, f.direction_from_local(local.with_z(0.0)), DVec3::ZERO, DVec3::Z);
+        prop_assert!((0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y), "{uv}");
+        prop_assert!((uv.x - theta / TAU).abs() < 1e-12 && (uv.y - z).abs() < 1e-12);
+        let back = f.from_local(m.surface_point(uv, local));
+        prop_assert!((back - p).length() < 1e-9 * (1.0 + p.length()), "{back} vs {p}");
+    }
+
+    /// Sphere: latitude φ maps to v = (φ + π/2)/π (the equator to 0.5), and back.
+    #[test]
+    fn spherical_round_trip(
+        f in frame(), theta in 0.01..TAU - 0.01, phi in -1.55..1.55f64, r in 0.1..4.0f64,
+    ) {
+        let m = mapping(IntermediateSurface::Sphere, f, 1.0);
+        let local = r * DVec3::new(theta.cos() * phi.cos(), theta.sin() * phi.cos(), phi.sin());
+        let p = f.from_local(local);
+        let uv = m.uv(p, f.direction_from_local(local / r), DVec3::ZERO, DVec3::Z);
+        prop_assert!((0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y), "{uv}");
+        prop_assert!((uv.x - theta / TAU).abs() < 1e-12);
+        prop_assert!((uv.y - (phi + PI / 2.0) / PI).abs() < 1e-12);
+        let back = f.from_local(m.surface_point(uv, local));
+        prop_assert!((back - p).length() < 1e-9 * (1.0 + p.length()), "{back} vs {p}");
+    }
+}
+
+#[test]
+fn the_equator_maps_to_the_middle_row() {
+    let f = Frame::new(DVec3::ZERO, DVec3::Y, DVec3::X).unwrap();
+    let m = mapping(IntermediateSurface::Sphere, f, 1.0);
+    for k in 0..16 {
+        let a = k as f64 / 16.0 * TAU;
+        let p = DVec3::new(a.cos(), 0.0, -a.sin()) * 2.5;
+        assert!((m.uv(p, p, DVec3::ZERO, DVec3::Z).y - 0.5).abs() < 1e-15);
+    }
+}
+
+fn scene_from(text: &str) -> Scene {
+    let table = tables::parse(text, "test scene").unwrap();
+    scene_from_table(table, &Directory(".".into())).unwrap()
+}
+
+/// A textured quad whose coordinates come from a planar mapping stored at its
+/// vertices, seen by `eye`, interpolated as `interpolation` says.
+fn textured_quad(eye: [f64; 3], look_at: [f64; 3], up: [f64; 3], interpolation: &str) -> Scene {
+    scene_from(&format!(
+        r#"
+        [camera]
+        eye = {eye:?}
+        look_at = {look_at:?}
+        up = {up:?}
+        fov_y = 50.0
+        width = 160
+        height = 120
+        [textures.t]
+        procedural = "checkerboard"
+        [materials.m]
+        diffuse = [0.5, 0.5, 0.5]
+        diffuse_texture = "t"
+        interpolation = "{interpolation}"
+        mapping = {{ surface = "plane", axis = [0.0, 1.0, 0.0], reference = [1.0, 0.0, 0.2], size = [0.3, 0.7] }}
+        [[objects]]
+        shape = "quad"
+        material = "m"
+        transform = [{{ scale = [3.0, 1.0, 12.0] }}, {{ rotate = {{ axis = [0.0, 1.0, 0.0], degrees = 20.0 }} }}, {{ translate = [0.0, 0.0, -4.0] }}]
+        "#
+    ))
+}
+
+/// The largest difference between interpolated (u, v) and the exact inverse mapping
+/// (the pixel's ray met with the quad's plane, then the mapping), and where it is.
+fn interpolation_error(scene: &Scene) -> (f64, (u32, u32), usize) {
+    let (view, surface): (View, _) = visible_surface(scene);
+    let material = &scene.materials[0];
+    let mapping = material.mapping.as_ref().unwrap();
+    let frame = &scene.objects[0].frame;
+    let polygon = &scene.polygons[0];
+    let origin = polygon.vertices[0].position;
+    let (mut worst, mut at, mut covered) = (0.0f64, (0, 0), 0);
+    for y in 0..view.height {
+        for x in 0..view.width {
+            let s = surface.at(x, y);
+            if s.is_empty() {
+                continue;
+            }
+            covered += 1;
+            let d = view.ray(x as f64 + 0.5, y as f64 + 0.5);
+            let t = (origin - view.eye).dot(polygon.normal) / d.dot(polygon.normal);
+            let p = frame.to_object.transform_point3(view.eye + d * t);
+            let exact = mapping.uv(p, DVec3::Y, DVec3::ZERO, DVec3::Y);
+            let e = (exact - s.uv).abs().max_element();
+            if e > worst {
+                (worst, at) = (e, (x, y));
+            }
+        }
+    }
+    (worst, at, covered)
+}
+
+#[test]
+fn perspective_correct_coordinates_are_exact_and_affine_ones_are_not() {
+    const Y: [f64; 3] = [0.0, 1.0, 0.0];
+    let (eye, look) = ([0.5, 1.5, 4.0], [0.0, 0.0, -6.0]);
+    let (error, _, covered) = interpolation_error(&textured_quad(eye, look, Y, "perspective"));
+    assert!(covered > 4000, "the quad covers {covered} pixels");
+    assert!(error < 1e-4, "perspective-correct (u, v) off by {error}");
+
+    // Affine interpolation departs from the exact map, most where depth varies most
+    // along the spans, far from the vertices: tens of checks' worth here.
+    let (error, (x, y), _) = interpolation_error(&textured_quad(eye, look, Y, "affine"));
+    println!("affine interpolation departs by {error:.3} in (u, v) at pixel ({x}, {y})");
+    assert!(error > 0.5, "affine error only {error}");
+
+    // Facing the camera squarely, affine interpolation is exact too.
+    let front = textured_quad(
+        [0.0, 15.0, -4.0],
+        [0.0, 0.0, -4.0],
+        [0.0, 0.0, -1.0],
+        "affine",
+    );
+    let (error, _, covered) = interpolation_error(&front);
+    assert!(covered > 1000, "the quad covers {covered} pixels");
+    assert!(error < 1e-6, "fronto-parallel affine error {error}");
+}
+
+#[test]
+fn exact_mode_evaluates_the_mapping_at_each_point() {
+    // On a sphere, a spherical mapping interpolated from the vertices is only
+    // approximately the mapping; evaluated per sample it is exact. The two agree to
+    // the tessellation's order, and exact differs from interpolated.
+    let text = |mode: &str| {
+        format!(
+            r#"
+            [camera]
+            eye = [0.0, 0.5, 4.0]
+            look_at = [0.0, 0.0, 0.0]
+            fov_y = 40.0
+            width = 96
+            height = 96
+            [textures.t]
+            procedural = "grid"
+            [materials.m]
+            diffuse = [0.5, 0.5, 0.5]
+            diffuse_texture = "t"
+            interpolation = "{mode}"
+            mapping = {{ surface = "sphere" }}
+            [[lights]]
+            type = "point"
+            position = [2.0, 3.0, 4.0]
+            intensity = [30.0, 30.0, 30.0]
+            [[objects]]
+            shape = "sphere"
+            resolution = 24
+            material = "m"
+            "#
+        )
+    };
+    let exact = render(&scene_from(&text("exact")));
+    let interpolated = render(&scene_from(&text("perspective")));
+    let differing = exact
+        .pixels
+        .iter()
+        .zip(&interpolated.pixels)
+        .filter(|(a, b)| (**a - **b).abs().max_element() > 1e-3)
+        .count();
+    assert!(
+        differing > 0,
+        "exact and interpolated renders are identical"
+    );
+    assert!(
+        differing < exact.pixels.len() / 10,
+        "{differing} pixels differ: more than grid lines shifting by a fraction of a cell"
+    );
+}
+
+fn hashed_image(width: u32, height: u32) -> Texels {
+    Texels::generate(width, height, |uv| {
+        let h = ((uv.x * 12.9898 + uv.y * 78.233).sin() * 43_758.545)
+            .fract()
+            .abs() as f32;
+        Vec3::new(h, 1.0 - h, (h * 3.0).fract())
+    })
+}
+
+#[test]
+fn every_pyramid_level_keeps_the_mean() {
+    for (w, h) in [(64, 64), (128, 16), (360, 180), (5, 3), (1, 7)] {
+        let pyramid = Pyramid::build(&hashed_image(w, h));
+        let base = &pyramid.levels[0];
+        assert!(base.width.is_power_of_two() && base.height.is_power_of_two());
+        let top = pyramid.levels.last().unwrap();
+        assert_eq!((top.width, top.height), (1, 1));
+        let mean = base.mean();
+        for (k, level) in pyramid.levels.iter().enumerate() {
+            let d = (level.mean() - mean).abs().max_element();
+            assert!(d < 1e-6, "{w}x{h} level {k}: mean off by {d}");
+        }
+    }
+}
+
+#[test]
+fn a_constant_texture_stays_constant_at_every_level_and_filter() {
+    let c = Vec3::new(0.25, 0.5, 0.75);
+    let texels = Texels::generate(48, 20, |_| c);
+    for level in Pyramid::build(&texels).levels {
+        assert!(
+            level
+                .texels
+                .iter()
+                .all(|t| (*t - c).abs().max_element() < 1e-6)
+        );
+    }
+    for filter in [
+        Filter::Nearest,
+        Filter::Bilinear,
+        Filter::MipNearest,
+        Filter::Trilinear,
+        Filter::SummedArea,
+    ] {
+        for wrap in [Wrap::Repeat, Wrap::Clamp] {
+            let t = Texture::new("c", texels.clone(), None, wrap, filter);
+            for k in 0..50 {
+                let uv = DVec2::new(k as f64 * 0.731 - 7.0, k as f64 * 0.377 - 3.0);
+                let size = (k as f64 * 0.3).exp2() / 48.0;
+                let footprint = [DVec2::new(size, size * 0.3), DVec2::new(-0.2 * size, size)];
+                let got = t.color(uv, footprint);
+                assert!(
+                    (got - c).abs().max_element() < 1e-5,
+                    "{filter:?} {wrap:?} at {uv}: {got}"
+                );
+            }
+        }
+    }
+}
+
+fn rmse(a: &Image, b: &Image) -> f64 {
+    let sum: f64 = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .map(|(p, q)| (*p - *q).as_dvec3().length_squared())
+        .sum();
+    (sum / a.pixels.len() as f64).sqrt()
+}
+
+/// The mip-mapping entry with both halves sampled by `filter`, at 192 × 96.
+fn horizon(filter: &str, supersample: u32) -> Image {
+    let overrides: Vec<String> = [
+        format!("textures.point.filter=\"{filter}\""),
+        format!("textures.trilinear.filter=\"{filter}\""),
+        "camera.width=192".into(),
+        "camera.height=96".into(),
+        format!("render.supersample={supersample}"),
+    ]
+    .into();
+    render(&load_scene("mip-mapping", &overrides).unwrap())
+}
+
+#[test]
+fn trilinear_mip_mapping_is_three_times_closer_to_the_filtered_image() {
+    let reference = horizon("nearest", 16);
+    let point = rmse(&horizon("nearest", 1), &reference);
+    let trilinear = rmse(&horizon("trilinear", 1), &reference);
+    let summed = rmse(&horizon("summed-area", 1), &reference);
+    println!(
+        "RMSE against 16x16 supersampling: point {point:.4}, trilinear {trilinear:.4}, summed-area {summed:.4}"
+    );
+    assert!(
+        trilinear * 3.0 <= point,
+        "trilinear {trilinear} is not 3x below point sampling {point}"
+    );
+    assert!(summed < point, "summed-area {summed} vs point {point}");
+}
+
+/// A smooth height with exact derivatives: B(u, v) = a sin(k u + c) cos(l v).
+#[derive(Clone, Copy, Debug)]
+struct Height {
+    a: f64,
+    k: f64,
+    l: f64,
+    c: f64,
+}
+
+impl Height {
+    fn at(&self, uv: DVec2) -> f64 {
+        self.a * (self.k * uv.x + self.c).sin() * (self.l * uv.y).cos()
+    }
+    fn gradient(&self, uv: DVec2) -> DVec2 {
+        let (s, co) = (
+            (self.k * uv.x + self.c).sin(),
+            (self.k * uv.x + self.c).cos(),
+        );
+        DVec2::new(
+            self.a * self.k * co * (self.l * uv.y).cos(),
+            -self.a * self.l * s * (self.l * uv.y).sin(),
+        )
+    }
+}
+
+/// The unit normal of O + B N/|N| by central differences of the displaced surface.
+fn displaced_normal(surface: impl Fn(DVec2) -> (DVec3, DVec3), b: Height, uv: DVec2) -> DVec3 {
+    let displaced = |uv: DVec2| {
+        let (p, n) = surface(uv);
+        p + n * b.at(uv)
+    };
+    let h = 1e-6;
+    let du = (displaced(uv + DVec2::X * h) - displaced(uv - DVec2::X * h)) / (2.0 * h);
+    let dv = (displaced(uv + DVec2::Y * h) - displaced(uv - DVec2::Y * h)) / (2.0 * h);
+    du.cross(dv).normalize()
+}
+
+fn height() -> impl Strategy<Value = Height> {
+    (1.0..8.0f64, 1.0..8.0f64, 0.0..TAU).prop_map(|(k, l, c)| Height { a: 1.0, k, l, c })
+}
+
+proptest! {
+    /// On a plane (any frame, any scale of its parameterisation) Blinn's normal is the
+    /// displaced surface's normal: the dropped term B (N/|N|)_u is zero.
+    #[test]
+    fn bumped_plane_normals_are_the_displaced_normals(
+        f in frame(), size in (0.2..3.0f64, 0.2..3.0f64), b in height(),
+        amplitude in 1e-4..0.05f64, uv in (0.0..1.0f64, 0.0..1.0f64),
+    ) {
+        let m = Mapping { size: DVec2::new(size.0, size.1), ..mapping(IntermediateSurface::Plane, f, 1.0) };
+        let b = Height { a: amplitude, ..b };
+        let uv = DVec2::new(uv.0, uv.1);
+        let surface = |uv: DVec2| (f.from_local(m.surface_point(uv, DVec3::ZERO)), f.z);
+        let p = surface(uv).0;
+        let bumped = perturb(f.z, m.tangents(p, f.z), b.gradient(uv));
+        let exact = displaced_normal(surface, b, uv);
+        prop_assert!(bumped.angle_between(exact) < 1e-6, "{bumped} vs {exact}");
+    }
+
+    /// On a sphere the dropped term B (N/|N|)_u is parallel to N, so Blinn's normal
+    /// matches the displaced surface's to first order: the angle between them is
+    /// second order in the amplitude, a small fraction of the tilt itself.
+    #[test]
+    fn bumped_sphere_normals_match_the_displaced_normals_to_first_order(
+        f in frame(), r in 0.3..3.0f64, b in height(),
+        amplitude in 1e-4..1e-2f64, uv in (0.05..0.95f64, 0.15..0.85f64),
+    ) {
+        let m = mapping(IntermediateSurface::Sphere, f, 1.0);
+        let b = Height { a: amplitude * r, ..b };
+        let uv = DVec2::new(uv.0, uv.1);
+        let through = DVec3::X * r;
+        let surface = |uv: DVec2| {
+            let l = m.surface_point(uv, through);
+            (f.from_local(l), f.direction_from_local(l / r))
+        };
+        let (p, n) = surface(uv);
+        let bumped = perturb(n, m.tangents(p, n), b.gradient(uv));
+        let exact = displaced_normal(surface, b, uv);
+        let tilt = n.angle_between(exact);
+        let error = bumped.angle_between(exact);
+        prop_assert!(error <= 4.0 * amplitude * tilt + 1e-7, "error {error}, tilt {tilt}");
+    }
+}
+
+/// The bump-mapping entry's scene table at a small size.
+fn bump_table() -> toml::Table {
+    let mut table = catalogue::entry("bump-mapping").unwrap().scene;
+    tables::set(&mut table, "camera.width=120").unwrap();
+    tables::set(&mut table, "camera.height=90").unwrap();
+    table
+}
+
+fn render_table(table: toml::Table) -> Image {
+    render(&scene_from_table(table, &catalogue::resources()).unwrap())
+}
+
+#[test]
+fn a_zero_height_bump_map_changes_nothing() {
+    let mut flat = bump_table();
+    tables::set(&mut flat, "materials.sphere.bump_height=0.0").unwrap();
+    tables::set(&mut flat, "materials.floor.bump_height=0.0").unwrap();
+    let mut plain = bump_table();
+    for m in ["sphere", "floor"] {
+        let material = plain["materials"][m].as_table().unwrap().clone();
+        let mut material = material;
+        material.remove("bump_texture");
+        material.remove("bump_height");
+        plain["materials"].as_table_mut().unwrap()[m] = material.into();
+    }
+    let (a, b) = (render_table(flat), render_table(plain));
+    assert!(a.pixels == b.pixels, "a zero bump height changed the image");
+    // And a non-zero one does change it (the comparison can fail).
+    assert!(render_table(bump_table()).pixels != b.pixels);
+}
+
+#[test]
+fn bumps_move_with_their_object() {
+    // Rotate and translate everything (objects, light, camera) by one rigid motion:
+    // wrinkles attached to the surfaces give the same picture; wrinkles fixed in
+    // world space would not.
+    let axis = DVec3::new(0.3, 1.0, -0.2).normalize();
+    let degrees = 37.0f64;
+    let shift = DVec3::new(1.5, -0.5, 2.0);
+    let motion = glam::DMat4::from_translation(shift)
+        * glam::DMat4::from_axis_angle(axis, degrees.to_radians());
+    let mut moved = bump_table();
+    let point = |key: &str, t: &toml::Table| -> DVec3 {
+        let a = t[key].as_array().unwrap();
+        DVec3::new(
+            a[0].as_float().unwrap(),
+            a[1].as_float().unwrap(),
+            a[2].as_float().unwrap(),
+        )
+    };
+    let set = |table: &mut toml::Table, key: &str, v: DVec3| {
+        tables::set(table, &format!("{key}=[{}, {}, {}]", v.x, v.y, v.z)).unwrap();
+    };
+    let camera = moved["camera"].as_table().unwrap().clone();
+    set(
+        &mut moved,
+        "camera.eye",
+        motion.transform_point3(point("eye", &camera)),
+    );
+    set(
+        &mut moved,
+        "camera.look_at",
+        motion.transform_point3(point("look_at", &camera)),
+    );
+    set(&mut moved, "camera.up", motion.transform_vector3(DVec3::Y));
+    let light = moved["lights"][0].as_table().unwrap().clone();
+    set(
+        &mut moved,
+        "lights.0.position",
+        motion.transform_point3(point("position", &light)),
+    );
+    for k in 0..2 {
+        let extra = format!(
+            "objects.{k}.transform=[{}, {{ rotate = {{ axis = [{}, {}, {}], degrees = {degrees} }} }}, {{ translate = [{}, {}, {}] }}]",
+            moved["objects"][k]["transform"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|s| s.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            axis.x,
+            axis.y,
+            axis.z,
+            shift.x,
+            shift.y,
+            shift.z
+        );
+        tables::set(&mut moved, &extra).unwrap();
+    }
+    let (before, after) = (render_table(bump_table()), render_table(moved));
+    let differing = before
+        .pixels
+        .iter()
+        .zip(&after.pixels)
+        .filter(|(a, b)| (**a - **b).abs().max_element() > 1e-3 * a.max_element().max(1e-3))
+        .count();
+    // Only samples exactly on a polygon edge may fall the other way.
+    assert!(
+        differing * 1000 < before.pixels.len(),
+        "{differing} of {} pixels changed",
+        before.pixels.len()
+    );
+}
