@@ -2,11 +2,12 @@
 
 use anyhow::Result;
 use lumiere::shadow::ShadowMethod;
+use lumiere::texture::Filter;
 use lumiere::{load_scene, raster, render};
 use std::time::{Duration, Instant};
 
-/// Time whole renders (median of several runs) per scene, shadow method and size,
-/// and the scan-line pass's fill rate.
+/// Time whole renders (median of several runs) per scene, variant (shadow method or
+/// texture filter) and size, and the scan-line pass's fill rate.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Catalogue ids or scene files to time.
@@ -15,6 +16,10 @@ pub struct Args {
     /// Shadow methods to time (each overrides the scene's own).
     #[arg(long, value_enum, value_delimiter = ',')]
     shadows: Vec<ShadowMethod>,
+    /// Texture filters to time (each overrides the filter of every texture of the
+    /// scene).
+    #[arg(long, value_enum, value_delimiter = ',')]
+    filters: Vec<Filter>,
     /// Image sizes (square) to time.
     #[arg(long, value_delimiter = ',', default_values_t = [512u32, 1024])]
     sizes: Vec<u32>,
@@ -27,30 +32,21 @@ pub fn run(args: Args) -> Result<()> {
     println!("threads: {}", rayon::current_num_threads());
     println!(
         "{:<26} {:<15} {:>10} {:>12} {:>14}",
-        "scene", "shadows", "size", "render (ms)", "fill (Mpix/s)"
+        "scene", "variant", "size", "render (ms)", "fill (Mpix/s)"
     );
-    let methods: Vec<Option<ShadowMethod>> = if args.shadows.is_empty() {
-        vec![None]
-    } else {
-        args.shadows.iter().copied().map(Some).collect()
-    };
     for scene_name in &args.scenes {
-        for method in &methods {
+        for (label, variant) in variants(&args, scene_name)? {
             for &size in &args.sizes {
                 let mut sets = vec![
                     format!("camera.width={size}"),
                     format!("camera.height={size}"),
                 ];
-                if let Some(m) = method {
-                    let name = clap::ValueEnum::to_possible_value(m).expect("no skipped variants");
-                    sets.push(format!("shadows.method=\"{}\"", name.get_name()));
-                }
+                sets.extend(variant.iter().cloned());
                 let scene = load_scene(scene_name, &sets)?;
                 let full = median(args.runs, || {
                     std::hint::black_box(render::render(&scene));
                 });
                 let fill = fill_rate(&scene, args.runs);
-                let label = method.map_or("(scene's)".to_string(), |m| format!("{m:?}"));
                 println!(
                     "{:<26} {:<15} {:>10} {:>12.2} {:>14.1}",
                     scene_name,
@@ -63,6 +59,38 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The variants to time, each a label and its `--set` overrides: the scene as it
+/// is, or each shadow method, or each texture filter on all its textures.
+fn variants(args: &Args, scene_name: &str) -> Result<Vec<(String, Vec<String>)>> {
+    let name = |v: &dyn Fn() -> Option<clap::builder::PossibleValue>| {
+        v().expect("no skipped variants").get_name().to_string()
+    };
+    let mut variants = Vec::new();
+    for m in &args.shadows {
+        let method = name(&|| clap::ValueEnum::to_possible_value(m));
+        variants.push((method.clone(), vec![format!("shadows.method=\"{method}\"")]));
+    }
+    if !args.filters.is_empty() {
+        let textures: Vec<String> = load_scene(scene_name, &[])?
+            .textures
+            .iter()
+            .map(|t| t.name.clone())
+            .collect();
+        for f in &args.filters {
+            let filter = name(&|| clap::ValueEnum::to_possible_value(f));
+            let sets = textures
+                .iter()
+                .map(|t| format!("textures.{t}.filter=\"{filter}\""))
+                .collect();
+            variants.push((filter, sets));
+        }
+    }
+    if variants.is_empty() {
+        variants.push(("(scene's)".to_string(), Vec::new()));
+    }
+    Ok(variants)
 }
 
 /// Mpixels per second of the visible-surface pass alone (polygons prepared once).

@@ -22,7 +22,7 @@ use summed_area::SummedAreaTable;
 pub use texels::{Texels, Wrap};
 
 /// How a texture is sampled.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum Filter {
     /// Point sampling of the full-resolution image: the texel under the sample.
