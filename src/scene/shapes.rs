@@ -4,7 +4,7 @@
 //! Faces run counter-clockwise seen from outside.
 
 use super::Vertex;
-use crate::texture::mapping::{Frame, IntermediateSurface, Mapping, Projector};
+use crate::texture::mapping::{BOX_FACES, Frame, IntermediateSurface, Mapping, Projector};
 use glam::{DVec2, DVec3};
 use std::f64::consts::{PI, TAU};
 
@@ -48,15 +48,8 @@ pub fn polygon(corners: &[DVec3]) -> Faces {
 
 pub fn cube() -> Faces {
     // Each face: an outward axis and two in-plane axes (u, v) with u × v = outward.
-    let axes = [
-        (DVec3::X, DVec3::NEG_Z, DVec3::Y),
-        (DVec3::NEG_X, DVec3::Z, DVec3::Y),
-        (DVec3::Y, DVec3::X, DVec3::NEG_Z),
-        (DVec3::NEG_Y, DVec3::X, DVec3::Z),
-        (DVec3::Z, DVec3::X, DVec3::Y),
-        (DVec3::NEG_Z, DVec3::NEG_X, DVec3::Y),
-    ];
-    axes.iter()
+    BOX_FACES
+        .iter()
         .map(|&(n, u, v)| {
             let c = [
                 0.5 * (n - u - v),
