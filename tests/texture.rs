@@ -512,3 +512,38 @@ fn bumps_move_with_their_object() {
         before.pixels.len()
     );
 }
+
+#[test]
+fn the_box_mapping_reproduces_the_boxs_own_coordinates() {
+    let scene = |mapping: &str| {
+        scene_from(&format!(
+            r#"
+            [camera]
+            eye = [2.0, 3.0, 4.0]
+            look_at = [0.0, 0.0, 0.0]
+            fov_y = 40.0
+            width = 8
+            height = 8
+            [textures.t]
+            procedural = "grid"
+            [materials.m]
+            diffuse = [0.5, 0.5, 0.5]
+            diffuse_texture = "t"
+            {mapping}
+            [[objects]]
+            shape = "box"
+            material = "m"
+            transform = [{{ rotate = {{ axis = [1.0, 2.0, 3.0], degrees = 40.0 }} }}]
+            "#
+        ))
+    };
+    let own = scene("");
+    let mapped = scene(
+        "mapping = { surface = \"box\", axis = [0.0, 0.0, 1.0], reference = [1.0, 0.0, 0.0] }",
+    );
+    for (a, b) in own.polygons.iter().zip(&mapped.polygons) {
+        for (u, v) in a.vertices.iter().zip(&b.vertices) {
+            assert!((u.uv - v.uv).length() < 1e-12, "{} vs {}", u.uv, v.uv);
+        }
+    }
+}

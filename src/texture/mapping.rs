@@ -125,7 +125,8 @@ pub struct Mapping {
 
 /// Box faces: outward axis and the in-plane u and v axes (u × v = outward), in the
 /// frame's coordinates. The built-in box's faces follow the same table, so a box
-/// mapping with the default frame reproduces the box's own texture coordinates.
+/// mapping whose frame is the object's own (axis z, reference x) reproduces the
+/// box's own texture coordinates.
 pub const BOX_FACES: [(DVec3, DVec3, DVec3); 6] = [
     (DVec3::X, DVec3::NEG_Z, DVec3::Y),
     (DVec3::NEG_X, DVec3::Z, DVec3::Y),
