@@ -17,6 +17,7 @@ use crate::scene::{Polygon, Reflectance, Scene};
 use crate::texture::Interpolation;
 use crate::texture::bump::perturb;
 use glam::{DMat3, DVec2, DVec3};
+use std::cell::LazyCell;
 use std::collections::HashMap;
 
 /// The reflectance and unit shading normal (not yet turned towards the eye) at
@@ -33,7 +34,8 @@ pub fn textured_point(
     let material = &scene.materials[polygon.material];
     let frame = &scene.objects[polygon.object].frame;
     let normal = s.normal.as_dvec3();
-    let local = Local::of(s, normal, eye, frame);
+    // Only the exact mapping and bump frames need the point in modelling coordinates.
+    let local = LazyCell::new(|| Local::of(s, normal, eye, frame));
     let uv = match &material.mapping {
         Some(m) if material.interpolation == Interpolation::Exact => {
             m.uv(local.point, local.normal, frame.centroid, local.to_eye)
