@@ -10,6 +10,7 @@
 pub mod catalogue;
 pub mod geometry;
 pub mod output;
+pub mod radiosity;
 pub mod raster;
 pub mod render;
 pub mod scene;

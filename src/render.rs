@@ -7,6 +7,7 @@ use crate::scene::Scene;
 use crate::shading::{shade, vertex_colors};
 use crate::shadow::Visibility;
 use crate::texture::Interpolation;
+use anyhow::Result;
 use glam::Vec3;
 
 /// The visible surface of `scene` on its sample grid (pixels × supersample).
@@ -58,8 +59,12 @@ pub fn sample_view(scene: &Scene) -> View {
 /// In Williams's post-pass, what a shadowed pixel keeps of its radiance.
 pub const POST_PASS_SHADE: f32 = 0.25;
 
-/// Linear radiance image of `scene`, shadowed by the scene's shadow method.
-pub fn render(scene: &Scene) -> Image {
+/// Linear radiance image of `scene`: its radiosity solution when it has
+/// `[radiosity]` settings, else its lights, shadowed by the scene's shadow method.
+pub fn render(scene: &Scene) -> Result<Image> {
+    if let Some(settings) = &scene.radiosity {
+        return crate::radiosity::render(scene, settings);
+    }
     let (view, surface) = visible_surface(scene);
     let visibility = Visibility::compute(scene, &view, &surface, scene.shadows.method);
     let radiance = if scene.shadows.post_pass {
@@ -75,7 +80,7 @@ pub fn render(scene: &Scene) -> Image {
     } else {
         shade(scene, &view, &surface, &visibility)
     };
-    to_pixels(scene, &view, radiance)
+    Ok(to_pixels(scene, &view, radiance))
 }
 
 /// The visibility term of the first light, white where lit, black in shadow, grey
@@ -96,7 +101,7 @@ pub fn shadow_aov(scene: &Scene) -> Image {
     to_pixels(scene, &view, values)
 }
 
-fn to_pixels(scene: &Scene, view: &View, samples: Vec<Vec3>) -> Image {
+pub fn to_pixels(scene: &Scene, view: &View, samples: Vec<Vec3>) -> Image {
     Image {
         width: view.width,
         height: view.height,

@@ -171,7 +171,7 @@ fn polygon_irradiance_matches_quadrature_and_the_published_value() {
 fn pixel_radiance_is_the_light_model_exactly() {
     let scene = cornell("cornell-box-point", 64);
     let (_, surface) = visible_surface(&scene);
-    let image = render(&scene);
+    let image = render(&scene).unwrap();
     let Light::Point(lamp) = &scene.lights[0] else {
         panic!("a point light")
     };
@@ -197,7 +197,7 @@ fn pixel_radiance_is_the_light_model_exactly() {
 
     let scene = cornell("cornell-box", 64);
     let (_, surface) = visible_surface(&scene);
-    let image = render(&scene);
+    let image = render(&scene).unwrap();
     let (_, _, radiance) = area_light(&scene);
     let lit: Vec<Vec3> = surface
         .samples
@@ -217,7 +217,7 @@ fn pixel_radiance_is_the_light_model_exactly() {
 fn area_lit_pixels_match_quadrature() {
     let scene = cornell("cornell-box", 32);
     let (_, surface) = visible_surface(&scene);
-    let image = render(&scene);
+    let image = render(&scene).unwrap();
     let (quad, normal, radiance) = area_light(&scene);
     let mut checked = 0;
     for (s, pixel) in surface.samples.iter().zip(&image.pixels).step_by(7) {

@@ -42,7 +42,7 @@ fn render_entry(id: &str) -> Result<(Image, f32), Failed> {
         format!("camera.height={}", a.test_height),
     ];
     let scene = load_scene(id, &sets).map_err(|e| format!("{e:#}"))?;
-    Ok((lumiere::render(&scene), scene.render.exposure))
+    Ok((lumiere::render(&scene)?, scene.render.exposure))
 }
 
 fn check(id: &str) -> Result<(), Failed> {

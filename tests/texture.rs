@@ -207,8 +207,8 @@ fn exact_mode_evaluates_the_mapping_at_each_point() {
             "#
         )
     };
-    let exact = render(&scene_from(&text("exact")));
-    let interpolated = render(&scene_from(&text("perspective")));
+    let exact = render(&scene_from(&text("exact"))).unwrap();
+    let interpolated = render(&scene_from(&text("perspective"))).unwrap();
     let differing = exact
         .pixels
         .iter()
@@ -305,7 +305,7 @@ fn horizon(filter: &str, supersample: u32) -> Image {
         format!("render.supersample={supersample}"),
     ]
     .into();
-    render(&load_scene("mip-mapping", &overrides).unwrap())
+    render(&load_scene("mip-mapping", &overrides).unwrap()).unwrap()
 }
 
 #[test]
@@ -417,7 +417,7 @@ fn bump_table() -> toml::Table {
 }
 
 fn render_table(table: toml::Table) -> Image {
-    render(&scene_from_table(table, &catalogue::resources()).unwrap())
+    render(&scene_from_table(table, &catalogue::resources()).unwrap()).unwrap()
 }
 
 #[test]

@@ -82,7 +82,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     match args.aov {
         None => output::save(
-            &lumiere::render(&scene),
+            &lumiere::render(&scene)?,
             &args.output,
             scene.render.exposure,
         ),

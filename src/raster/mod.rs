@@ -27,4 +27,4 @@ pub use project::{
 };
 pub use view::View;
 pub use visible_surface::{NO_POLYGON, Sample, VisibleSurface};
-pub use watkins::{covered_samples, covered_spans, rasterize, rasterize_depth};
+pub use watkins::{covered_samples, covered_spans, rasterize, rasterize_depth, rasterize_ids};

@@ -1,7 +1,7 @@
 //! The eye frame of a pinhole camera and its projection to the screen.
 
 use crate::scene::Camera;
-use glam::{DVec3, DVec4};
+use glam::{DVec2, DVec3, DVec4};
 
 /// A camera ready for projection onto a grid of `width × height` samples.
 ///
@@ -17,6 +17,9 @@ pub struct View {
     pub focal: f64,
     pub width: u32,
     pub height: u32,
+    /// Where the view axis meets the screen, in samples: the image centre for a
+    /// camera; off centre for a hemicube's half-height side faces.
+    pub centre: DVec2,
     pub near: f64,
 }
 
@@ -36,6 +39,7 @@ impl View {
             focal,
             width,
             height,
+            centre: DVec2::new(0.5 * width as f64, 0.5 * height as f64),
             near: camera.near,
         }
     }
@@ -48,33 +52,30 @@ impl View {
     /// Screen position of an eye-space point in front of the eye.
     pub fn project(&self, eye: DVec3) -> (f64, f64) {
         (
-            0.5 * self.width as f64 + self.focal * eye.x / eye.z,
-            0.5 * self.height as f64 - self.focal * eye.y / eye.z,
+            self.centre.x + self.focal * eye.x / eye.z,
+            self.centre.y - self.focal * eye.y / eye.z,
         )
     }
 
     /// World direction (not normalised) of the ray through screen point (x, y).
     pub fn ray(&self, x: f64, y: f64) -> DVec3 {
         self.forward * self.focal
-            + self.right * (x - 0.5 * self.width as f64)
-            + self.up * (0.5 * self.height as f64 - y)
+            + self.right * (x - self.centre.x)
+            + self.up * (self.centre.y - y)
     }
 
     /// The view frustum as eye-space half-spaces a·p + d ≥ 0: near, left, right, top,
     /// bottom. The side planes pass through the eye, so clipping against them in eye
     /// space is exact.
     pub fn frustum(&self) -> [DVec4; 5] {
-        let (hw, hh, f) = (
-            0.5 * self.width as f64,
-            0.5 * self.height as f64,
-            self.focal,
-        );
+        let (c, f) = (self.centre, self.focal);
+        let (w, h) = (self.width as f64, self.height as f64);
         [
             DVec4::new(0.0, 0.0, 1.0, -self.near),
-            DVec4::new(f, 0.0, hw, 0.0),
-            DVec4::new(-f, 0.0, hw, 0.0),
-            DVec4::new(0.0, -f, hh, 0.0),
-            DVec4::new(0.0, f, hh, 0.0),
+            DVec4::new(f, 0.0, c.x, 0.0),
+            DVec4::new(-f, 0.0, w - c.x, 0.0),
+            DVec4::new(0.0, -f, c.y, 0.0),
+            DVec4::new(0.0, f, h - c.y, 0.0),
         ]
     }
 }

@@ -20,7 +20,7 @@
 
 use super::edge_table::{Edge, EdgeTable, FIXED_ONE, first_pixel_at_or_after};
 use super::project::{ATTRIBUTES, Attributes, UV};
-use super::{Sample, ScreenPolygon, VisibleSurface};
+use super::{NO_POLYGON, Sample, ScreenPolygon, VisibleSurface};
 use glam::{DVec2, DVec3, Vec3};
 use rayon::prelude::*;
 
@@ -62,6 +62,12 @@ pub fn rasterize_depth(polygons: &[ScreenPolygon], width: u32, height: u32) -> V
     sweep::<_, _, false>(polygons, width, height, f32::INFINITY, |_, depth, _, _| {
         depth as f32
     })
+}
+
+/// The id of the nearest polygon at every sample, `NO_POLYGON` where none: an item
+/// buffer (Weghorst, Hooper & Greenberg 1984), as the hemicube uses it.
+pub fn rasterize_ids(polygons: &[ScreenPolygon], width: u32, height: u32) -> Vec<u32> {
+    sweep::<_, _, false>(polygons, width, height, NO_POLYGON, |p, _, _, _| p.id)
 }
 
 /// The sweep, writing `write(polygon, depth, attributes over z, z)` at each sample where

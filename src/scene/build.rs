@@ -2,6 +2,7 @@
 //! transforms applied, materials resolved, emitters turned into area lights.
 
 use super::file::{LightFile, ObjectFile, SceneFile, ShapeKind};
+use super::radiosity_settings;
 use super::resources::Resources;
 use super::shapes::{self, Faces};
 use super::{
@@ -58,6 +59,12 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         post_pass: s.post_pass,
     };
 
+    let radiosity = file
+        .radiosity
+        .as_ref()
+        .map(radiosity_settings::from_file)
+        .transpose()?;
+
     let mut builder = Builder {
         eye: camera.eye,
         ..Default::default()
@@ -95,6 +102,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         camera,
         render,
         shadows,
+        radiosity,
         materials: builder.materials,
         objects: builder.objects,
         polygons: builder.polygons,

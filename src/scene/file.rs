@@ -23,6 +23,52 @@ pub struct SceneFile {
     pub shadows: ShadowsFile,
     #[serde(default)]
     pub textures: BTreeMap<String, TextureFile>,
+    /// Present: the scene is lit by a radiosity solution instead of its lights.
+    pub radiosity: Option<RadiosityFile>,
+}
+
+/// `[radiosity]`: solver, form factors, meshing, stopping and display.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RadiosityFile {
+    #[serde(default)]
+    pub solver: crate::radiosity::Solver,
+    #[serde(default)]
+    pub form_factors: crate::radiosity::FormFactorMethod,
+    #[serde(default = "hemicube_resolution")]
+    pub resolution: u32,
+    /// Longest patch side, in scene units (absent: each polygon is one patch).
+    pub patch_size: Option<f64>,
+    /// Longest element side (absent: each patch is one element).
+    pub element_size: Option<f64>,
+    #[serde(default = "gathering_tolerance")]
+    pub tolerance: f64,
+    #[serde(default = "unshot_fraction")]
+    pub unshot: f64,
+    #[serde(default = "max_steps")]
+    pub max_steps: usize,
+    #[serde(default)]
+    pub ambient: bool,
+    #[serde(default)]
+    pub display: crate::radiosity::Display,
+    #[serde(default = "max_memory_mb")]
+    pub max_memory_mb: u64,
+}
+
+fn hemicube_resolution() -> u32 {
+    128
+}
+fn gathering_tolerance() -> f64 {
+    1e-6
+}
+fn unshot_fraction() -> f64 {
+    0.01
+}
+fn max_steps() -> usize {
+    100_000
+}
+fn max_memory_mb() -> u64 {
+    4096
 }
 
 /// `[shadows]`: which method, and the shadow map's settings.

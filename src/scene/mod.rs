@@ -9,6 +9,7 @@ mod build;
 pub mod file;
 mod materials;
 mod obj;
+mod radiosity_settings;
 pub mod resources;
 mod shapes;
 pub mod tables;
@@ -226,6 +227,8 @@ pub struct Scene {
     pub camera: Camera,
     pub render: RenderSettings,
     pub shadows: ShadowSettings,
+    /// Lit by a radiosity solution (`[radiosity]`) instead of the lights.
+    pub radiosity: Option<crate::radiosity::Settings>,
     pub materials: Vec<Material>,
     pub objects: Vec<Object>,
     pub polygons: Vec<Polygon>,

@@ -1,0 +1,326 @@
+//! Meshing for radiosity: every scene polygon is cut into patches, and every patch
+//! into elements (Cohen, Greenberg, Immel & Brock 1986). Patches exchange energy;
+//! elements receive it and carry the shading detail.
+//!
+//! A quadrilateral is cut on a bilinear grid (a planar quad's grid points stay in its
+//! plane, so every cell is a planar quad); a triangle on its barycentric grid of n²
+//! triangles; any other polygon is first fanned into triangles. The cuts are made on
+//! one fine grid per polygon (patches × elements per patch along each side) whose
+//! points are numbered once, so elements of one polygon share their corners and
+//! vertex radiosities can be averaged over them. Polygons do not share vertices with
+//! each other: a crease (wall against floor) is a discontinuity of radiosity, which
+//! averaging across it would smear.
+
+use crate::geometry::polygon::{area, newell_normal};
+use crate::scene::Scene;
+use anyhow::{Result, bail};
+use glam::{DVec3, Vec3};
+use std::collections::HashMap;
+use std::ops::Range;
+
+/// How finely to cut: the polygon (or patch) whole, pieces no longer than a size
+/// along each side, or a fixed number of pieces along each side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Division {
+    Whole,
+    Size(f64),
+    Count(u32),
+}
+
+impl Division {
+    /// Pieces along a side of length `length`.
+    fn pieces(self, length: f64) -> usize {
+        match self {
+            Division::Whole => 1,
+            Division::Size(size) => ((length / size).ceil() as usize).max(1),
+            Division::Count(n) => n.max(1) as usize,
+        }
+    }
+}
+
+/// A patch: a piece of one scene polygon that shoots or gathers as a whole.
+#[derive(Clone, Debug)]
+pub struct Patch {
+    pub polygon: usize,
+    pub corners: Vec<DVec3>,
+    pub normal: DVec3,
+    pub centre: DVec3,
+    pub area: f64,
+    /// Lambertian reflectance per band, and emitted radiosity (π × the material's
+    /// emitted radiance: power per unit area).
+    pub reflectance: Vec3,
+    pub emission: Vec3,
+    pub elements: Range<usize>,
+}
+
+/// An element: a piece of a patch with its own radiosity, displayed by the
+/// scan-line pass. Its corners index `Mesh::vertices`.
+#[derive(Clone, Debug)]
+pub struct Element {
+    pub patch: usize,
+    pub corners: Vec<u32>,
+    pub centre: DVec3,
+    pub area: f64,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    pub vertices: Vec<DVec3>,
+    pub patches: Vec<Patch>,
+    pub elements: Vec<Element>,
+    /// Polygons left out, and why (zero area).
+    pub warnings: Vec<String>,
+}
+
+impl Mesh {
+    /// Cuts every polygon of `scene` into patches and elements.
+    pub fn build(scene: &Scene, patches: Division, elements: Division) -> Result<Mesh> {
+        let mut mesh = Mesh::default();
+        for (id, polygon) in scene.polygons.iter().enumerate() {
+            let corners: Vec<DVec3> = polygon.positions().collect();
+            if area(&corners) <= 0.0 || !area(&corners).is_finite() {
+                mesh.warnings.push(format!(
+                    "polygon {id} of object `{}` has no area: left out of the radiosity mesh",
+                    scene.objects[polygon.object].name
+                ));
+                continue;
+            }
+            let material = &scene.materials[polygon.material];
+            if material.diffuse.max_element() >= 1.0 {
+                bail!(
+                    "material `{}`: a diffuse reflectance of {} would create energy; radiosity needs every band below 1",
+                    material.name,
+                    material.diffuse.max_element()
+                );
+            }
+            let surface = Surface {
+                polygon: id,
+                normal: polygon.normal,
+                reflectance: material.diffuse,
+                emission: material.emission * std::f32::consts::PI,
+            };
+            if corners.len() == 4 {
+                mesh.cut_quad(&surface, &corners, patches, elements);
+            } else {
+                for k in 1..corners.len() - 1 {
+                    let triangle = [corners[0], corners[k], corners[k + 1]];
+                    mesh.cut_triangle(&surface, &triangle, patches, elements);
+                }
+            }
+        }
+        if mesh.patches.is_empty() {
+            bail!("the scene has no polygon with an area to mesh for radiosity");
+        }
+        Ok(mesh)
+    }
+
+    /// Total emitted power per band, Σ E_i A_i.
+    pub fn emitted_power(&self) -> Vec3 {
+        self.patches
+            .iter()
+            .map(|p| p.emission * p.area as f32)
+            .sum()
+    }
+
+    /// Per vertex, the elements whose corner it is.
+    pub fn vertex_elements(&self) -> Vec<Vec<u32>> {
+        let mut users = vec![Vec::new(); self.vertices.len()];
+        for (e, element) in self.elements.iter().enumerate() {
+            for &v in &element.corners {
+                users[v as usize].push(e as u32);
+            }
+        }
+        users
+    }
+
+    /// World corners of element `e`.
+    pub fn element_corners(&self, e: usize) -> Vec<DVec3> {
+        self.elements[e]
+            .corners
+            .iter()
+            .map(|&v| self.vertices[v as usize])
+            .collect()
+    }
+
+    fn cut_quad(&mut self, s: &Surface, q: &[DVec3], patches: Division, elements: Division) {
+        let side = |a: usize, b: usize| (q[b] - q[a]).length();
+        let (pu, pv) = (
+            patches.pieces(side(0, 1).max(side(3, 2))),
+            patches.pieces(side(1, 2).max(side(0, 3))),
+        );
+        let (eu, ev) = (
+            elements.pieces(side(0, 1).max(side(3, 2)) / pu as f64),
+            elements.pieces(side(1, 2).max(side(0, 3)) / pv as f64),
+        );
+        let (nu, nv) = (pu * eu, pv * ev);
+        let point = |a: usize, b: usize| {
+            let (s, t) = (a as f64 / nu as f64, b as f64 / nv as f64);
+            let bottom = q[0].lerp(q[1], s);
+            let top = q[3].lerp(q[2], s);
+            bottom.lerp(top, t)
+        };
+        let mut grid = Grid::default();
+        for (i, j) in (0..pv).flat_map(|j| (0..pu).map(move |i| (i, j))) {
+            let cells = (0..ev).flat_map(|b| (0..eu).map(move |a| (i * eu + a, j * ev + b)));
+            let cells: Vec<Vec<(usize, usize)>> = cells
+                .map(|(a, b)| vec![(a, b), (a + 1, b), (a + 1, b + 1), (a, b + 1)])
+                .collect();
+            let outline = [
+                (i * eu, j * ev),
+                ((i + 1) * eu, j * ev),
+                ((i + 1) * eu, (j + 1) * ev),
+                (i * eu, (j + 1) * ev),
+            ];
+            self.push_patch(s, &mut grid, &cells, &outline, point);
+        }
+    }
+
+    fn cut_triangle(&mut self, s: &Surface, t: &[DVec3; 3], patches: Division, elements: Division) {
+        let longest = (0..3)
+            .map(|k| (t[(k + 1) % 3] - t[k]).length())
+            .fold(0.0, f64::max);
+        let np = patches.pieces(longest);
+        let ne = elements.pieces(longest / np as f64);
+        let n = np * ne;
+        // Grid point (a, b) is t0 + a/n (t1 − t0) + b/n (t2 − t0), a + b ≤ n.
+        let point = |a: usize, b: usize| {
+            t[0] + (t[1] - t[0]) * (a as f64 / n as f64) + (t[2] - t[0]) * (b as f64 / n as f64)
+        };
+        let mut grid = Grid::default();
+        for (i, j, up) in triangle_cells(np) {
+            // The patch's own fine cells: its triangle cut into ne² triangles, in
+            // fine-grid coordinates.
+            let map = |a: usize, b: usize| -> (usize, usize) {
+                if up {
+                    (i * ne + a, j * ne + b)
+                } else {
+                    // The downward cell (i+1, j), (i, j+1), (i+1, j+1) is the upward
+                    // one mirrored: local (a, b) ↦ corner − (a, b).
+                    ((i + 1) * ne - a, (j + 1) * ne - b)
+                }
+            };
+            let cells: Vec<Vec<(usize, usize)>> = triangle_cells(ne)
+                .map(|(a, b, up)| {
+                    if up {
+                        vec![map(a, b), map(a + 1, b), map(a, b + 1)]
+                    } else {
+                        vec![map(a + 1, b), map(a + 1, b + 1), map(a, b + 1)]
+                    }
+                })
+                .collect();
+            let outline = [map(0, 0), map(ne, 0), map(0, ne)];
+            self.push_patch(s, &mut grid, &cells, &outline, point);
+        }
+    }
+
+    /// A patch made of `cells` (each a list of fine-grid points) and bounded by
+    /// `outline` (fine-grid points), with its elements.
+    fn push_patch(
+        &mut self,
+        s: &Surface,
+        grid: &mut Grid,
+        cells: &[Vec<(usize, usize)>],
+        outline: &[(usize, usize)],
+        point: impl Fn(usize, usize) -> DVec3,
+    ) {
+        let patch = self.patches.len();
+        let first = self.elements.len();
+        for cell in cells {
+            let mut corners: Vec<u32> = cell
+                .iter()
+                .map(|&(a, b)| grid.vertex(&mut self.vertices, (a, b), || point(a, b)))
+                .collect();
+            let mut positions: Vec<DVec3> =
+                corners.iter().map(|&v| self.vertices[v as usize]).collect();
+            // Keep the polygon's orientation: the mirrored cells of a triangle
+            // come out the other way round.
+            if newell_normal(&positions).dot(s.normal) < 0.0 {
+                corners.reverse();
+                positions.reverse();
+            }
+            self.elements.push(Element {
+                patch,
+                centre: area_centroid(&positions),
+                area: area(&positions),
+                corners,
+            });
+        }
+        let elements = first..self.elements.len();
+        let area_sum: f64 = self.elements[elements.clone()].iter().map(|e| e.area).sum();
+        let centre = self.elements[elements.clone()]
+            .iter()
+            .map(|e| e.centre * e.area)
+            .sum::<DVec3>()
+            / area_sum;
+        let mut corners: Vec<DVec3> = outline.iter().map(|&(a, b)| point(a, b)).collect();
+        if newell_normal(&corners).dot(s.normal) < 0.0 {
+            corners.reverse();
+        }
+        self.patches.push(Patch {
+            polygon: s.polygon,
+            corners,
+            normal: s.normal,
+            centre,
+            area: area_sum,
+            reflectance: s.reflectance,
+            emission: s.emission,
+            elements,
+        });
+    }
+}
+
+/// What a polygon's patches inherit from it.
+struct Surface {
+    polygon: usize,
+    normal: DVec3,
+    reflectance: Vec3,
+    emission: Vec3,
+}
+
+/// Fine-grid points of one polygon, numbered on first use.
+#[derive(Default)]
+struct Grid {
+    index: HashMap<(usize, usize), u32>,
+}
+
+impl Grid {
+    fn vertex(
+        &mut self,
+        vertices: &mut Vec<DVec3>,
+        key: (usize, usize),
+        point: impl FnOnce() -> DVec3,
+    ) -> u32 {
+        *self.index.entry(key).or_insert_with(|| {
+            vertices.push(point());
+            (vertices.len() - 1) as u32
+        })
+    }
+}
+
+/// The n² cells of a triangle's barycentric grid: (a, b, upward). Upward cell (a, b)
+/// has corners (a, b), (a+1, b), (a, b+1); downward cell (a, b) has corners (a+1, b),
+/// (a+1, b+1), (a, b+1).
+fn triangle_cells(n: usize) -> impl Iterator<Item = (usize, usize, bool)> {
+    (0..n).flat_map(move |b| {
+        (0..n - b).flat_map(move |a| {
+            let down = (a + b + 1 < n).then_some((a, b, false));
+            std::iter::once((a, b, true)).chain(down)
+        })
+    })
+}
+
+/// The area centroid of a planar polygon (its vertex mean is not, for a quad).
+pub fn area_centroid(vertices: &[DVec3]) -> DVec3 {
+    let (mut sum, mut weight) = (DVec3::ZERO, 0.0);
+    for k in 1..vertices.len() - 1 {
+        let t = [vertices[0], vertices[k], vertices[k + 1]];
+        let a = area(&t);
+        sum += (t[0] + t[1] + t[2]) / 3.0 * a;
+        weight += a;
+    }
+    if weight > 0.0 {
+        sum / weight
+    } else {
+        vertices.iter().copied().sum::<DVec3>() / vertices.len() as f64
+    }
+}

@@ -1,0 +1,141 @@
+//! Radiosity: diffuse interreflection solved once for the whole scene, then drawn
+//! from the camera.
+//!
+//! - `mesh`: polygons cut into patches and elements (substructuring);
+//! - form factors from a point by `hemicube`, `nusselt` or `analytic`
+//!   (`form_factors` puts them behind one interface);
+//! - solvers: `gathering` (the matrix, Gauss–Seidel) and `shooting` (progressive
+//!   refinement, with the ambient term);
+//! - `display`: vertex radiosities, Gouraud or flat, radiance B/π.
+
+pub mod analytic;
+pub mod display;
+pub mod form_factors;
+pub mod gathering;
+pub mod hemicube;
+pub mod mesh;
+pub mod nusselt;
+pub mod receivers;
+pub mod shooting;
+
+use crate::output::Image;
+use crate::scene::Scene;
+use anyhow::{Result, bail};
+pub use display::Display;
+pub use form_factors::{Estimator, FormFactorMethod};
+use glam::Vec3;
+pub use mesh::{Division, Mesh};
+pub use shooting::{Shooting, Stop};
+
+/// Which solver.
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Deserialize, serde::Serialize,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum Solver {
+    /// The full system by Gauss–Seidel (Goral et al. 1984, Cohen & Greenberg 1985).
+    Gathering,
+    /// Progressive refinement (Cohen, Chen, Wallace & Greenberg 1988).
+    #[default]
+    Shooting,
+}
+
+/// A scene's `[radiosity]` settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    pub solver: Solver,
+    pub form_factors: FormFactorMethod,
+    /// Hemi-cube top-face cells per side (Nusselt: base-grid cells per side).
+    pub resolution: u32,
+    pub patches: Division,
+    pub elements: Division,
+    /// Gathering: Gauss–Seidel stops when no radiosity changes by more than this
+    /// fraction of the largest.
+    pub tolerance: f64,
+    /// Shooting: stop when the unshot power is this fraction of the emitted power.
+    pub unshot: f64,
+    pub max_steps: usize,
+    /// Shooting: display with the ambient term.
+    pub ambient: bool,
+    pub display: Display,
+    /// Gathering: the most memory its stored form factors may take, in bytes.
+    pub memory_budget: u64,
+}
+
+/// A solved scene: its mesh and the radiosity to display for every element.
+pub struct Solution {
+    pub mesh: Mesh,
+    pub elements: Vec<Vec3>,
+    /// What the solve did, for the terminal: steps or sweeps, unshot fraction.
+    pub summary: String,
+}
+
+/// Meshes `scene` and checks it can be solved: every reflectance below 1 (checked
+/// by the mesher), something emitting.
+pub fn mesh(scene: &Scene, settings: &Settings) -> Result<Mesh> {
+    let mesh = Mesh::build(scene, settings.patches, settings.elements)?;
+    if mesh.emitted_power().max_element() <= 0.0 {
+        bail!(
+            "the scene has no emitting surface (a material with `emission`): radiosity has no light to distribute"
+        );
+    }
+    Ok(mesh)
+}
+
+/// Solves `scene`'s radiosity with `settings`. `observe` sees the shooting solver
+/// after each step (it is not called when gathering).
+pub fn solve(
+    scene: &Scene,
+    settings: &Settings,
+    observe: &mut dyn FnMut(&Mesh, &Shooting),
+) -> Result<Solution> {
+    let mesh = mesh(scene, settings)?;
+    let estimator = Estimator::new(settings.form_factors, settings.resolution, scene);
+    match settings.solver {
+        Solver::Gathering => {
+            let g = gathering::gather(&mesh, &estimator, settings.tolerance, settings.memory_budget)?;
+            let summary = format!(
+                "gathering: {} patches, {} elements, Gauss-Seidel sweeps (r, g, b) {:?}",
+                mesh.patches.len(),
+                mesh.elements.len(),
+                g.sweeps
+            );
+            Ok(Solution {
+                elements: g.elements,
+                mesh,
+                summary,
+            })
+        }
+        Solver::Shooting => {
+            let mut state = Shooting::start(&mesh);
+            let stop = Stop {
+                unshot: settings.unshot,
+                max_steps: settings.max_steps,
+            };
+            state.run(&mesh, &estimator, stop, &mut |s| observe(&mesh, s));
+            let summary = format!(
+                "shooting: {} patches, {} elements, {} steps, {:.3}% of the emitted power unshot",
+                mesh.patches.len(),
+                mesh.elements.len(),
+                state.steps,
+                100.0 * state.unshot_fraction(&mesh)
+            );
+            Ok(Solution {
+                elements: state.displayed(&mesh, settings.ambient),
+                mesh,
+                summary,
+            })
+        }
+    }
+}
+
+/// The radiosity image of `scene` (which must have radiosity settings).
+pub fn render(scene: &Scene, settings: &Settings) -> Result<Image> {
+    let solution = solve(scene, settings, &mut |_, _| {})?;
+    Ok(display::image(
+        scene,
+        &solution.mesh,
+        &solution.elements,
+        settings.display,
+    ))
+}

@@ -1,0 +1,49 @@
+//! `[radiosity]` from the file, checked.
+
+use super::file::RadiosityFile;
+use crate::radiosity::{Division, Settings};
+use anyhow::{Result, ensure};
+
+pub fn from_file(r: &RadiosityFile) -> Result<Settings> {
+    ensure!(
+        (2..=4096).contains(&r.resolution),
+        "radiosity.resolution must be between 2 and 4096, got {}",
+        r.resolution
+    );
+    let size = |key: &str, value: Option<f64>| -> Result<Division> {
+        match value {
+            None => Ok(Division::Whole),
+            Some(v) => {
+                ensure!(
+                    v.is_finite() && v > 0.0,
+                    "radiosity.{key} must be a positive length, got {v}"
+                );
+                Ok(Division::Size(v))
+            }
+        }
+    };
+    ensure!(
+        r.tolerance.is_finite() && r.tolerance > 0.0 && r.tolerance < 1.0,
+        "radiosity.tolerance must be between 0 and 1, got {}",
+        r.tolerance
+    );
+    ensure!(
+        r.unshot.is_finite() && (0.0..1.0).contains(&r.unshot),
+        "radiosity.unshot must be a fraction from 0 to 1, got {}",
+        r.unshot
+    );
+    ensure!(r.max_memory_mb > 0, "radiosity.max_memory_mb must be positive");
+    Ok(Settings {
+        solver: r.solver,
+        form_factors: r.form_factors,
+        resolution: r.resolution,
+        patches: size("patch_size", r.patch_size)?,
+        elements: size("element_size", r.element_size)?,
+        tolerance: r.tolerance,
+        unshot: r.unshot,
+        max_steps: r.max_steps,
+        ambient: r.ambient,
+        display: r.display,
+        memory_budget: r.max_memory_mb << 20,
+    })
+}
