@@ -16,14 +16,16 @@
 use super::form_factors::{Estimator, patch_factors};
 use super::mesh::Mesh;
 use anyhow::{Result, bail};
-use glam::Vec3;
+use glam::DVec3;
 
 /// The gathering solution and its parts, kept for checks.
 pub struct Gathered {
     pub patch_factors: Vec<Vec<f64>>,
     pub element_factors: Vec<Vec<f32>>,
-    pub patches: Vec<Vec3>,
-    pub elements: Vec<Vec3>,
+    /// Radiosities in double precision, so the substructuring identities can be
+    /// checked to rounding.
+    pub patches: Vec<DVec3>,
+    pub elements: Vec<DVec3>,
     /// Gauss–Seidel sweeps per band.
     pub sweeps: [usize; 3],
 }
@@ -54,10 +56,14 @@ pub fn gather(
     }
     let element_factors = estimator.element_to_patch(mesh);
     let patch_factors = patch_factors(mesh, &element_factors);
-    let mut patches = vec![Vec3::ZERO; mesh.patches.len()];
+    let mut patches = vec![DVec3::ZERO; mesh.patches.len()];
     let mut sweeps = [0; 3];
     for band in 0..3 {
-        let emission: Vec<f64> = mesh.patches.iter().map(|p| p.emission[band] as f64).collect();
+        let emission: Vec<f64> = mesh
+            .patches
+            .iter()
+            .map(|p| p.emission[band] as f64)
+            .collect();
         let reflectance: Vec<f64> = mesh
             .patches
             .iter()
@@ -66,7 +72,7 @@ pub fn gather(
         let (b, n) = gauss_seidel(&patch_factors, &emission, &reflectance, tolerance);
         sweeps[band] = n;
         for (p, value) in patches.iter_mut().zip(b) {
-            p[band] = value as f32;
+            p[band] = value;
         }
     }
     let elements = mesh
@@ -75,13 +81,8 @@ pub fn gather(
         .zip(&element_factors)
         .map(|(e, row)| {
             let p = &mesh.patches[e.patch];
-            let mut gathered = [0.0f64; 3];
-            for (&f, b) in row.iter().zip(&patches) {
-                for k in 0..3 {
-                    gathered[k] += f as f64 * b[k] as f64;
-                }
-            }
-            p.emission + p.reflectance * Vec3::from(gathered.map(|g| g as f32))
+            let gathered: DVec3 = row.iter().zip(&patches).map(|(&f, b)| *b * f as f64).sum();
+            p.emission.as_dvec3() + p.reflectance.as_dvec3() * gathered
         })
         .collect();
     Ok(Gathered {

@@ -29,7 +29,15 @@ pub use shooting::{Shooting, Stop};
 
 /// Which solver.
 #[derive(
-    Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Deserialize, serde::Serialize,
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    clap::ValueEnum,
+    serde::Deserialize,
+    serde::Serialize,
 )]
 #[serde(rename_all = "kebab-case")]
 pub enum Solver {
@@ -93,7 +101,12 @@ pub fn solve(
     let estimator = Estimator::new(settings.form_factors, settings.resolution, scene);
     match settings.solver {
         Solver::Gathering => {
-            let g = gathering::gather(&mesh, &estimator, settings.tolerance, settings.memory_budget)?;
+            let g = gathering::gather(
+                &mesh,
+                &estimator,
+                settings.tolerance,
+                settings.memory_budget,
+            )?;
             let summary = format!(
                 "gathering: {} patches, {} elements, Gauss-Seidel sweeps (r, g, b) {:?}",
                 mesh.patches.len(),
@@ -101,7 +114,7 @@ pub fn solve(
                 g.sweeps
             );
             Ok(Solution {
-                elements: g.elements,
+                elements: g.elements.iter().map(|b| b.as_vec3()).collect(),
                 mesh,
                 summary,
             })

@@ -59,9 +59,7 @@ impl View {
 
     /// World direction (not normalised) of the ray through screen point (x, y).
     pub fn ray(&self, x: f64, y: f64) -> DVec3 {
-        self.forward * self.focal
-            + self.right * (x - self.centre.x)
-            + self.up * (self.centre.y - y)
+        self.forward * self.focal + self.right * (x - self.centre.x) + self.up * (self.centre.y - y)
     }
 
     /// The view frustum as eye-space half-spaces a·p + d ≥ 0: near, left, right, top,

@@ -32,7 +32,10 @@ pub fn from_file(r: &RadiosityFile) -> Result<Settings> {
         "radiosity.unshot must be a fraction from 0 to 1, got {}",
         r.unshot
     );
-    ensure!(r.max_memory_mb > 0, "radiosity.max_memory_mb must be positive");
+    ensure!(
+        r.max_memory_mb > 0,
+        "radiosity.max_memory_mb must be positive"
+    );
     Ok(Settings {
         solver: r.solver,
         form_factors: r.form_factors,
