@@ -4,8 +4,8 @@
 //! x is kept in 32.32 fixed point so that stepping x += Δx row by row is exact: k
 //! steps land on x₀ + kΔx bit for bit, so a band of rows can start anywhere and
 //! still see the same crossings as a sweep from the top (the result does not depend
-//! on how rows are shared between threads). Depth ζ and the attributes over z step
-//! in floating point. An edge is entered with its endpoints in a canonical order, so
+//! on how rows are shared between threads). Depth ζ steps in floating point; the
+//! attributes over z are evaluated at the row from the edge's first row. An edge is entered with its endpoints in a canonical order, so
 //! the two polygons sharing an edge get identical crossings.
 
 use super::ScreenPolygon;
@@ -34,28 +34,47 @@ pub struct Edge {
 }
 
 impl Edge {
-    /// The edge advanced by `rows` rows: exactly `rows` applications of the
-    /// increments for x; the same affine value for the others.
-    pub fn advanced(&self, rows: u32) -> Edge {
+    /// The edge's crossing `rows` rows below its first: exactly `rows` applications
+    /// of the increment for x, the same affine value for ζ.
+    pub fn crossing(&self, rows: u32) -> Crossing {
+        Crossing {
+            polygon: self.polygon,
+            last_row: self.last_row,
+            x: self.x + rows as i64 * self.dx,
+            dx: self.dx,
+            zeta: self.zeta + rows as f64 * self.dzeta,
+            dzeta: self.dzeta,
+        }
+    }
+
+    /// The attributes over z `rows` rows below the first row (evaluated, not
+    /// stepped: the same value whichever row a sweep started from).
+    pub fn attributes_at(&self, rows: u32) -> Attributes {
         let k = rows as f64;
         let mut attributes = self.attributes;
         for (a, d) in attributes.iter_mut().zip(self.dattributes) {
             *a += k * d;
         }
-        Edge {
-            x: self.x + rows as i64 * self.dx,
-            zeta: self.zeta + k * self.dzeta,
-            attributes,
-            ..self.clone()
-        }
+        attributes
     }
+}
 
+/// What the active edge list keeps of an edge on the current row: small, so that
+/// keeping the list sorted moves little memory. Attributes stay in the table.
+#[derive(Clone, Copy, Debug)]
+pub struct Crossing {
+    pub polygon: u32,
+    pub last_row: u32,
+    pub x: i64,
+    pub dx: i64,
+    pub zeta: f64,
+    pub dzeta: f64,
+}
+
+impl Crossing {
     pub fn step(&mut self) {
         self.x += self.dx;
         self.zeta += self.dzeta;
-        for (a, d) in self.attributes.iter_mut().zip(self.dattributes) {
-            *a += d;
-        }
     }
 }
 

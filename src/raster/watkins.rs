@@ -18,7 +18,7 @@
 //! fixed bands of `BAND_ROWS` on parallel threads; a band's AEL starts from the edge
 //! table exactly as a full sweep would have it (see `edge_table`).
 
-use super::edge_table::{Edge, EdgeTable, FIXED_ONE, first_pixel_at_or_after};
+use super::edge_table::{Crossing, EdgeTable, FIXED_ONE, first_pixel_at_or_after};
 use super::project::{ATTRIBUTES, Attributes, UV};
 use super::{NO_POLYGON, Sample, ScreenPolygon, VisibleSurface};
 use glam::{DVec2, DVec3, Vec3};
@@ -96,10 +96,13 @@ where
             let mut sweep = Sweep::starting_at(&table, band as u32 * BAND_ROWS);
             for row in rows.chunks_mut(width as usize) {
                 let y = sweep.row as f64 + 0.5;
+                let row_index = sweep.row;
                 sweep.for_each_span(width, |i0, i1, inside, active| {
                     let span = Span {
                         y,
                         active,
+                        table: &table,
+                        row: row_index,
                         polygons,
                         write: &write,
                     };
@@ -115,7 +118,9 @@ where
 /// the polygon table and what to write per sample.
 struct Span<'a, W> {
     y: f64,
-    active: &'a [(u32, Edge)],
+    active: &'a [(u32, Crossing)],
+    table: &'a EdgeTable,
+    row: u32,
     polygons: &'a [ScreenPolygon],
     write: &'a W,
 }
@@ -174,7 +179,7 @@ struct Sweep<'a> {
     table: &'a EdgeTable,
     row: u32,
     /// Active edges with their edge-table index (the tie-break of the sort).
-    active: Vec<(u32, Edge)>,
+    active: Vec<(u32, Crossing)>,
 }
 
 impl<'a> Sweep<'a> {
@@ -184,7 +189,7 @@ impl<'a> Sweep<'a> {
             .iter()
             .enumerate()
             .filter(|(_, e)| e.first_row < row && e.last_row >= row)
-            .map(|(k, e)| (k as u32, e.advanced(row - e.first_row)))
+            .map(|(k, e)| (k as u32, e.crossing(row - e.first_row)))
             .collect();
         let mut sweep = Sweep { table, row, active };
         sweep.enter_row();
@@ -193,16 +198,39 @@ impl<'a> Sweep<'a> {
 
     /// Merges this row's bucket, drops finished edges, restores x order.
     fn enter_row(&mut self) {
-        if let Some(bucket) = self.table.buckets.get(self.row as usize) {
-            self.active.extend(
-                bucket
-                    .iter()
-                    .map(|&k| (k, self.table.edges[k as usize].clone())),
-            );
-        }
         let row = self.row;
         self.active.retain(|(_, e)| e.last_row >= row);
+        // The stepped list is nearly sorted (edges swap only where they cross):
+        // insertion sort is linear there. The entering edges are sorted on their
+        // own and merged in, rather than inserted one by one.
         insertion_sort(&mut self.active);
+        let Some(bucket) = self
+            .table
+            .buckets
+            .get(row as usize)
+            .filter(|b| !b.is_empty())
+        else {
+            return;
+        };
+        let mut entering: Vec<(u32, Crossing)> = bucket
+            .iter()
+            .map(|&k| (k, self.table.edges[k as usize].crossing(0)))
+            .collect();
+        entering.sort_unstable_by_key(sort_key);
+        let mut merged = Vec::with_capacity(self.active.len() + entering.len());
+        let (mut a, mut b) = (
+            self.active.iter().peekable(),
+            entering.into_iter().peekable(),
+        );
+        loop {
+            match (a.peek(), b.peek()) {
+                (Some(x), Some(y)) if sort_key(x) <= sort_key(y) => merged.push(*a.next().unwrap()),
+                (_, Some(_)) => merged.push(b.next().unwrap()),
+                (Some(_), None) => merged.push(*a.next().unwrap()),
+                (None, None) => break,
+            }
+        }
+        self.active = merged;
     }
 
     fn next_row(&mut self) {
@@ -215,7 +243,11 @@ impl<'a> Sweep<'a> {
 
     /// Calls `f(first, last, inside, active)` for every span of this row that covers
     /// at least one sample and lies inside at least one polygon.
-    fn for_each_span(&self, width: u32, mut f: impl FnMut(i64, i64, &[Inside], &[(u32, Edge)])) {
+    fn for_each_span(
+        &self,
+        width: u32,
+        mut f: impl FnMut(i64, i64, &[Inside], &[(u32, Crossing)]),
+    ) {
         let active = &self.active;
         // Pair each polygon's crossings in x order: 1st with 2nd, 3rd with 4th…
         let mut order: Vec<(u32, usize)> = active
@@ -254,11 +286,15 @@ impl<'a> Sweep<'a> {
     }
 }
 
-fn insertion_sort(active: &mut [(u32, Edge)]) {
-    let key = |(k, e): &(u32, Edge)| (e.x, *k);
+/// The order of the active edge list: by x, ties by edge-table index.
+fn sort_key((k, e): &(u32, Crossing)) -> (i64, u32) {
+    (e.x, *k)
+}
+
+fn insertion_sort(active: &mut [(u32, Crossing)]) {
     for i in 1..active.len() {
         let mut j = i;
-        while j > 0 && key(&active[j - 1]) > key(&active[j]) {
+        while j > 0 && sort_key(&active[j - 1]) > sort_key(&active[j]) {
             active.swap(j - 1, j);
             j -= 1;
         }
@@ -332,6 +368,16 @@ fn fill_run<S, W: Fn(&ScreenPolygon, f64, &Attributes, f64) -> S, const ATTRIBUT
     row: &mut [S],
 ) {
     let (l, r) = (&span.active[c.left].1, &span.active[c.right].1);
+    let attributes_of = |k: usize| {
+        let (index, _) = span.active[k];
+        let edge = &span.table.edges[index as usize];
+        edge.attributes_at(span.row - edge.first_row)
+    };
+    let (la, ra) = if ATTRIBUTES_USED {
+        (attributes_of(c.left), attributes_of(c.right))
+    } else {
+        ([0.0; ATTRIBUTES], [0.0; ATTRIBUTES])
+    };
     let (xl, xr) = (l.x as f64 / FIXED_ONE as f64, r.x as f64 / FIXED_ONE as f64);
     let per_pixel = if xr > xl { 1.0 / (xr - xl) } else { 0.0 };
     let t = (i0 as f64 + 0.5 - xl) * per_pixel;
@@ -340,8 +386,8 @@ fn fill_run<S, W: Fn(&ScreenPolygon, f64, &Attributes, f64) -> S, const ATTRIBUT
     let mut a = [0.0; ATTRIBUTES];
     let mut da = [0.0; ATTRIBUTES];
     for k in 0..ATTRIBUTES {
-        da[k] = (r.attributes[k] - l.attributes[k]) * per_pixel;
-        a[k] = l.attributes[k] + (r.attributes[k] - l.attributes[k]) * t;
+        da[k] = (ra[k] - la[k]) * per_pixel;
+        a[k] = la[k] + (ra[k] - la[k]) * t;
     }
     let polygon = &span.polygons[c.polygon as usize];
     for i in i0..=i1 {
