@@ -3,6 +3,7 @@
 mod bench;
 mod compare;
 mod list;
+mod radiosity;
 mod render;
 mod shadow_polygons;
 

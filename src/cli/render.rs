@@ -1,6 +1,7 @@
 //! `lumiere render`: one image of a catalogue entry or a scene file.
 
 use anyhow::Result;
+use lumiere::radiosity::{FormFactorMethod, Solver};
 use lumiere::shadow::ShadowMethod;
 use lumiere::{catalogue, load_scene, output};
 use std::path::PathBuf;
@@ -34,6 +35,33 @@ pub struct Args {
     /// Render a catalogue entry at its golden-image test size.
     #[arg(long)]
     test_size: bool,
+    /// Light the scene by radiosity with this solver (overrides `[radiosity] solver`).
+    #[arg(long, value_enum)]
+    radiosity: Option<Solver>,
+    /// Radiosity form factors (overrides `[radiosity] form_factors`).
+    #[arg(long, value_enum)]
+    form_factors: Option<FormFactorMethod>,
+    /// Hemi-cube cells along the top face (or Nusselt grid cells along the disc).
+    #[arg(long)]
+    hemicube_resolution: Option<u32>,
+    /// Longest patch side, in scene units.
+    #[arg(long)]
+    patch_size: Option<f64>,
+    /// Longest element side, in scene units.
+    #[arg(long)]
+    element_size: Option<f64>,
+    /// Shooting: stop after this many steps.
+    #[arg(long)]
+    steps: Option<usize>,
+    /// Shooting: display with the ambient term.
+    #[arg(long)]
+    ambient: bool,
+    /// Shooting: write an image every `--frame-every` steps into DIR, and
+    /// DIR/convergence.gif.
+    #[arg(long, value_name = "DIR")]
+    frames: Option<PathBuf>,
+    #[arg(long, default_value_t = 1, requires = "frames")]
+    frame_every: usize,
     /// Override any scene key, e.g. --set camera.width=64 --set render.shading=flat
     /// (array elements by index: --set objects.0.material=red). Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
@@ -55,7 +83,7 @@ pub fn run(args: Args) -> Result<()> {
         sets.push(format!("camera.width={}", a.test_width));
         sets.push(format!("camera.height={}", a.test_height));
     }
-    sets.extend(args.sets);
+    sets.extend(args.sets.iter().cloned());
     if let Some(w) = args.width {
         sets.push(format!("camera.width={w}"));
     }
@@ -69,6 +97,7 @@ pub fn run(args: Args) -> Result<()> {
         let name = clap::ValueEnum::to_possible_value(&method).expect("no skipped variants");
         sets.push(format!("shadows.method=\"{}\"", name.get_name()));
     }
+    sets.extend(radiosity_sets(&args));
     let scene = load_scene(&args.scene, &sets)?;
     for warning in &scene.warnings {
         eprintln!("warning: {warning}");
@@ -80,6 +109,13 @@ pub fn run(args: Args) -> Result<()> {
             );
         }
     }
+    if let Some(settings) = &scene.radiosity {
+        let frames = args.frames.map(|dir| super::radiosity::Frames {
+            dir,
+            every: args.frame_every,
+        });
+        return super::radiosity::render(&scene, settings, &args.output, frames.as_ref());
+    }
     match args.aov {
         None => output::save(
             &lumiere::render(&scene)?,
@@ -88,4 +124,35 @@ pub fn run(args: Args) -> Result<()> {
         ),
         Some(Aov::Shadow) => output::save(&lumiere::render::shadow_aov(&scene), &args.output, 1.0),
     }
+}
+
+/// The radiosity options as scene-key overrides.
+fn radiosity_sets(args: &Args) -> Vec<String> {
+    fn name(value: &impl clap::ValueEnum) -> String {
+        let value = value.to_possible_value().expect("no skipped variants");
+        value.get_name().to_string()
+    }
+    let mut sets = Vec::new();
+    if let Some(s) = args.radiosity {
+        sets.push(format!("radiosity.solver=\"{}\"", name(&s)));
+    }
+    if let Some(m) = args.form_factors {
+        sets.push(format!("radiosity.form_factors=\"{}\"", name(&m)));
+    }
+    if let Some(r) = args.hemicube_resolution {
+        sets.push(format!("radiosity.resolution={r}"));
+    }
+    if let Some(p) = args.patch_size {
+        sets.push(format!("radiosity.patch_size={p:?}"));
+    }
+    if let Some(e) = args.element_size {
+        sets.push(format!("radiosity.element_size={e:?}"));
+    }
+    if let Some(n) = args.steps {
+        sets.push(format!("radiosity.max_steps={n}"));
+    }
+    if args.ambient {
+        sets.push("radiosity.ambient=true".to_string());
+    }
+    sets
 }

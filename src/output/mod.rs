@@ -1,10 +1,12 @@
 //! Images: linear radiance in memory; PNG (sRGB after exposure) and PFM (linear) on
 //! disk, chosen by extension; files are written whole or not at all.
 
+mod animation;
 mod compare;
 mod pfm;
 mod png;
 
+pub use animation::encode_gif;
 pub use compare::{Comparison, compare, difference_image};
 
 use anyhow::{Context, Result, bail};
