@@ -2,6 +2,7 @@
 
 mod bench;
 mod compare;
+mod form_factors;
 mod list;
 mod radiosity;
 mod render;
@@ -29,6 +30,7 @@ enum Command {
     Compare(compare::Args),
     Bench(bench::Args),
     ShadowPolygons(shadow_polygons::Args),
+    FormFactors(form_factors::Args),
 }
 
 pub fn run(cli: Cli) -> Result<()> {
@@ -38,5 +40,6 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Compare(a) => compare::run(a),
         Command::Bench(a) => bench::run(a),
         Command::ShadowPolygons(a) => shadow_polygons::run(a),
+        Command::FormFactors(a) => form_factors::run(a),
     }
 }

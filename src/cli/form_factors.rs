@@ -1,0 +1,94 @@
+//! `lumiere form-factors`: the patch-to-patch form-factor matrix of a scene, each
+//! polygon one patch, for teaching and for checking.
+
+use anyhow::Result;
+use lumiere::load_scene;
+use lumiere::radiosity::form_factors::patch_factors;
+use lumiere::radiosity::{Division, Estimator, FormFactorMethod, Mesh};
+use lumiere::scene::Scene;
+
+/// Print F_ij for every pair of polygons of a scene (rows: from, columns: to).
+///
+/// Each polygon is one patch. With --elements M every source patch is cut into
+/// M x M elements, one estimate at each element's centre, area-averaged into the
+/// patch's row (the analytic method integrates over the patch at those points).
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// A catalogue id or the path of a .toml scene file.
+    scene: String,
+    #[arg(long, value_enum, default_value_t = FormFactorMethod::Hemicube)]
+    method: FormFactorMethod,
+    /// Hemi-cube cells along the top face, or Nusselt grid cells along the disc.
+    #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(2..=4096))]
+    resolution: u32,
+    /// Elements along each side of a source patch.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=256))]
+    elements: u32,
+    /// Print the matrix with patch names and areas as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Override any scene key (as for `render`).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    sets: Vec<String>,
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let scene = load_scene(&args.scene, &args.sets)?;
+    let mesh = Mesh::build(&scene, Division::Whole, Division::Count(args.elements))?;
+    for warning in scene.warnings.iter().chain(&mesh.warnings) {
+        eprintln!("warning: {warning}");
+    }
+    let estimator = Estimator::new(args.method, args.resolution, &scene);
+    let matrix = patch_factors(&mesh, &estimator.element_to_patch(&mesh));
+    let names = patch_names(&scene, &mesh);
+    if args.json {
+        let patches: Vec<_> = mesh
+            .patches
+            .iter()
+            .zip(&names)
+            .map(|(p, name)| serde_json::json!({ "name": name, "polygon": p.polygon, "area": p.area }))
+            .collect();
+        let report = serde_json::json!({
+            "method": args.method,
+            "resolution": args.resolution,
+            "elements": args.elements,
+            "patches": patches,
+            "factors": matrix,
+        });
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    } else {
+        print!("{:<24}{:>12}", "from \\ to", "area");
+        for name in &names {
+            print!(" {:>10.10}", name);
+        }
+        println!();
+        for ((row, name), p) in matrix.iter().zip(&names).zip(&mesh.patches) {
+            print!("{name:<24.24}{:>12.4}", p.area);
+            for f in row {
+                print!(" {f:>10.6}");
+            }
+            println!("   sum {:.6}", row.iter().sum::<f64>());
+        }
+    }
+    Ok(())
+}
+
+/// Each patch's object name, with the polygon's index when its object has several.
+fn patch_names(scene: &Scene, mesh: &Mesh) -> Vec<String> {
+    mesh.patches
+        .iter()
+        .map(|p| {
+            let object = scene.polygons[p.polygon].object;
+            let name = &scene.objects[object].name;
+            let siblings: Vec<usize> = (0..scene.polygons.len())
+                .filter(|&k| scene.polygons[k].object == object)
+                .collect();
+            if siblings.len() == 1 {
+                name.clone()
+            } else {
+                let k = siblings.iter().position(|&k| k == p.polygon).unwrap_or(0);
+                format!("{name}#{k}")
+            }
+        })
+        .collect()
+}
