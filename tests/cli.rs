@@ -536,3 +536,82 @@ fn a_textured_scene_renders() {
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert!(dir.path().join("out.png").exists());
 }
+
+/// A lamp over a floor, lit by radiosity with `extra` radiosity keys.
+fn radiosity_scene(floor_rho: &str, lamp_emission: &str, extra: &str) -> String {
+    format!(
+        "[camera]\n{CAMERA}\nwidth = 16\nheight = 12\n\n\
+         [materials.floor]\ndiffuse = [{floor_rho}, 0.5, 0.5]\n\
+         [materials.lamp]\ndiffuse = [0.0, 0.0, 0.0]\nemission = {lamp_emission}\n\n\
+         [[objects]]\nshape = \"quad\"\nmaterial = \"floor\"\n\
+         [[objects]]\nshape = \"quad\"\nmaterial = \"lamp\"\n\
+         transform = [{{ rotate = {{ axis = [1.0, 0.0, 0.0], degrees = 180.0 }} }}, {{ translate = [0.0, 1.0, 0.0] }}]\n\n\
+         [radiosity]\nresolution = 16\nelement_size = 0.25\n{extra}"
+    )
+}
+
+#[test]
+fn radiosity_renders_with_frames_and_a_convergence_animation() {
+    let dir = workspace(&[("lamp.toml", &radiosity_scene("0.5", "[1.0, 1.0, 1.0]", ""))]);
+    let run = lumiere(
+        &["render", "lamp.toml", "-o", "out.png", "--frames", "steps", "--ambient"],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stderr.contains("shooting: 2 patches, 32 elements"), "{}", run.stderr);
+    assert!(dir.path().join("out.png").exists());
+    assert!(dir.path().join("steps/step-00001.png").exists());
+    let gif = std::fs::read(dir.path().join("steps/convergence.gif")).unwrap();
+    assert_eq!(&gif[..6], b"GIF89a");
+    let run = lumiere(
+        &["render", "lamp.toml", "-o", "out.pfm", "--radiosity", "gathering", "--form-factors", "nusselt"],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stderr.contains("gathering: 2 patches"), "{}", run.stderr);
+}
+
+#[test]
+fn radiosity_bad_input() {
+    let out = |dir: &tempfile::TempDir| dir.path().join("out.png");
+    for (text, fragment) in [
+        (radiosity_scene("1.0", "[1.0, 1.0, 1.0]", ""), "below 1"),
+        (radiosity_scene("0.5", "[0.0, 0.0, 0.0]", ""), "no emitting surface"),
+        (radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "patch_size = -1.0"), "radiosity.patch_size"),
+        (radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "tolerance = 2.0"), "radiosity.tolerance"),
+        (radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "solver = \"jacobi\""), "solver"),
+        (
+            radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "solver = \"gathering\"\nmax_memory_mb = 1\npatch_size = 0.01"),
+            "use the shooting solver",
+        ),
+    ] {
+        let dir = workspace(&[("s.toml", &text)]);
+        let run = lumiere(&["render", "s.toml", "-o", "out.png"], dir.path());
+        assert_clear_error(&run, fragment, &out(&dir));
+    }
+}
+
+#[test]
+fn form_factors_prints_the_matrix_as_json() {
+    // Two unit squares facing each other at distance 1: the closed form is 0.1998.
+    let text = "[camera]\neye = [0.0, 0.5, 3.0]\nlook_at = [0.0, 0.5, 0.0]\nfov_y = 40.0\nwidth = 8\nheight = 8\n\
+        [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+        [[objects]]\nshape = \"quad\"\nname = \"floor\"\nmaterial = \"grey\"\n\
+        [[objects]]\nshape = \"quad\"\nname = \"ceiling\"\nmaterial = \"grey\"\n\
+        transform = [{ rotate = { axis = [1.0, 0.0, 0.0], degrees = 180.0 } }, { translate = [0.0, 1.0, 0.0] }]\n";
+    let dir = workspace(&[("pair.toml", text)]);
+    let run = lumiere(
+        &["form-factors", "pair.toml", "--method", "analytic", "--elements", "16", "--json"],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let report: serde_json::Value = serde_json::from_str(&run.stdout).unwrap();
+    assert_eq!(report["patches"][0]["name"], "floor");
+    assert!((report["patches"][1]["area"].as_f64().unwrap() - 1.0).abs() < 1e-12);
+    let f = report["factors"][0][1].as_f64().unwrap();
+    assert!((f - 0.1998249).abs() < 2e-4, "{f}");
+    assert_eq!(report["factors"][0][0].as_f64().unwrap(), 0.0);
+    let run = lumiere(&["form-factors", "pair.toml", "--resolution", "1"], dir.path());
+    assert_ne!(run.code, 0);
+    assert!(!run.stderr.contains("panicked"));
+}

@@ -74,16 +74,7 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
                 .map(|k| corner(mesh, k, smooth))
                 .collect();
             start += arity;
-            let pieces = planar_pieces(face);
-            if pieces.len() > 1 {
-                out.warnings.push(format!(
-                    "{}: object {}: a face that is not planar was split into {} triangles",
-                    path.display(),
-                    model.name,
-                    pieces.len()
-                ));
-            }
-            for polygon in pieces {
+            for polygon in planar_pieces(face) {
                 let positions: Vec<DVec3> = polygon.iter().map(|v| v.position).collect();
                 let measure = area(&positions);
                 if measure == 0.0 || !measure.is_finite() {
