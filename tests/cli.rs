@@ -554,21 +554,46 @@ fn radiosity_scene(floor_rho: &str, lamp_emission: &str, extra: &str) -> String 
 fn radiosity_renders_with_frames_and_a_convergence_animation() {
     let dir = workspace(&[("lamp.toml", &radiosity_scene("0.5", "[1.0, 1.0, 1.0]", ""))]);
     let run = lumiere(
-        &["render", "lamp.toml", "-o", "out.png", "--frames", "steps", "--ambient"],
+        &[
+            "render",
+            "lamp.toml",
+            "-o",
+            "out.png",
+            "--frames",
+            "steps",
+            "--ambient",
+        ],
         dir.path(),
     );
     assert_eq!(run.code, 0, "{}", run.stderr);
-    assert!(run.stderr.contains("shooting: 2 patches, 32 elements"), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("shooting: 2 patches, 32 elements"),
+        "{}",
+        run.stderr
+    );
     assert!(dir.path().join("out.png").exists());
     assert!(dir.path().join("steps/step-00001.png").exists());
     let gif = std::fs::read(dir.path().join("steps/convergence.gif")).unwrap();
     assert_eq!(&gif[..6], b"GIF89a");
     let run = lumiere(
-        &["render", "lamp.toml", "-o", "out.pfm", "--radiosity", "gathering", "--form-factors", "nusselt"],
+        &[
+            "render",
+            "lamp.toml",
+            "-o",
+            "out.pfm",
+            "--radiosity",
+            "gathering",
+            "--form-factors",
+            "nusselt",
+        ],
         dir.path(),
     );
     assert_eq!(run.code, 0, "{}", run.stderr);
-    assert!(run.stderr.contains("gathering: 2 patches"), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("gathering: 2 patches"),
+        "{}",
+        run.stderr
+    );
 }
 
 #[test]
@@ -576,12 +601,28 @@ fn radiosity_bad_input() {
     let out = |dir: &tempfile::TempDir| dir.path().join("out.png");
     for (text, fragment) in [
         (radiosity_scene("1.0", "[1.0, 1.0, 1.0]", ""), "below 1"),
-        (radiosity_scene("0.5", "[0.0, 0.0, 0.0]", ""), "no emitting surface"),
-        (radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "patch_size = -1.0"), "radiosity.patch_size"),
-        (radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "tolerance = 2.0"), "radiosity.tolerance"),
-        (radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "solver = \"jacobi\""), "solver"),
         (
-            radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "solver = \"gathering\"\nmax_memory_mb = 1\npatch_size = 0.01"),
+            radiosity_scene("0.5", "[0.0, 0.0, 0.0]", ""),
+            "no emitting surface",
+        ),
+        (
+            radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "patch_size = -1.0"),
+            "radiosity.patch_size",
+        ),
+        (
+            radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "tolerance = 2.0"),
+            "radiosity.tolerance",
+        ),
+        (
+            radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "solver = \"jacobi\""),
+            "solver",
+        ),
+        (
+            radiosity_scene(
+                "0.5",
+                "[1.0, 1.0, 1.0]",
+                "solver = \"gathering\"\nmax_memory_mb = 1\npatch_size = 0.01",
+            ),
             "use the shooting solver",
         ),
     ] {
@@ -601,7 +642,15 @@ fn form_factors_prints_the_matrix_as_json() {
         transform = [{ rotate = { axis = [1.0, 0.0, 0.0], degrees = 180.0 } }, { translate = [0.0, 1.0, 0.0] }]\n";
     let dir = workspace(&[("pair.toml", text)]);
     let run = lumiere(
-        &["form-factors", "pair.toml", "--method", "analytic", "--elements", "16", "--json"],
+        &[
+            "form-factors",
+            "pair.toml",
+            "--method",
+            "analytic",
+            "--elements",
+            "16",
+            "--json",
+        ],
         dir.path(),
     );
     assert_eq!(run.code, 0, "{}", run.stderr);
@@ -611,7 +660,10 @@ fn form_factors_prints_the_matrix_as_json() {
     let f = report["factors"][0][1].as_f64().unwrap();
     assert!((f - 0.1998249).abs() < 2e-4, "{f}");
     assert_eq!(report["factors"][0][0].as_f64().unwrap(), 0.0);
-    let run = lumiere(&["form-factors", "pair.toml", "--resolution", "1"], dir.path());
+    let run = lumiere(
+        &["form-factors", "pair.toml", "--resolution", "1"],
+        dir.path(),
+    );
     assert_ne!(run.code, 0);
     assert!(!run.stderr.contains("panicked"));
 }
