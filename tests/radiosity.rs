@@ -322,13 +322,13 @@ fn closed_box_factors_are_reciprocal_close_to_one_per_row_and_zero_on_the_diagon
     ] {
         let estimator = Estimator::new(method, 128, &scene);
         let f = patch_factors(&mesh, &estimator.element_to_patch(&mesh));
-        for i in 0..6 {
-            assert_eq!(f[i][i], 0.0, "{method:?}");
-            let row: f64 = f[i].iter().sum();
-            assert!((row - 1.0).abs() < 0.01, "{method:?} row {i} sums to {row}");
-            for j in 0..6 {
+        for (i, row) in f.iter().enumerate() {
+            assert_eq!(row[i], 0.0, "{method:?}");
+            let sum: f64 = row.iter().sum();
+            assert!((sum - 1.0).abs() < 0.01, "{method:?} row {i} sums to {sum}");
+            for (j, f_ij) in row.iter().enumerate() {
                 let (a, b) = (
-                    mesh.patches[i].area * f[i][j],
+                    mesh.patches[i].area * f_ij,
                     mesh.patches[j].area * f[j][i],
                 );
                 assert!(
@@ -679,7 +679,7 @@ mod properties {
             } else {
                 let m = mesh.elements.len();
                 let grid = (1..=m)
-                    .filter(|nu| m % nu == 0)
+                    .filter(|nu| m.is_multiple_of(*nu))
                     .any(|nu| (nu + 1) * (m / nu + 1) == mesh.vertices.len());
                 prop_assert!(grid, "{} elements, {} vertices", m, mesh.vertices.len());
             }

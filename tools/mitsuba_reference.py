@@ -1,15 +1,18 @@
 #!/usr/bin/env python3
-"""Independent check of lumiere against Mitsuba 3 on the point-lit Cornell box.
+"""Independent checks of lumiere against Mitsuba 3 on the Cornell box.
 
-Renders the scene of the `cornell-box-point` catalogue entry with Mitsuba 3 (variant
-scalar_rgb, direct illumination, box filter) and compares it with lumiere's
-`render cornell-box-point --shadows ray-cast --supersample 4` at the same size, with
-NVIDIA's FLIP on the sRGB images. Not part of the test suite (it needs two large
-PyPI packages): run it by hand.
+Default: the point-lit box of `cornell-box-point`, Mitsuba's direct illumination
+against `render cornell-box-point --shadows ray-cast --supersample 4`.
+With --global: the box lit by its quad light with every diffuse bounce, Mitsuba's
+path tracer against the converged radiosity solution, `render radiosity-gathering
+--element-size 10 --patch-size 70 --supersample 4`.
+Both in Mitsuba's scalar_rgb variant with a box filter, at the same size, compared
+with NVIDIA's FLIP on the sRGB images. Not part of the test suite (it needs two
+large PyPI packages): run it by hand.
 
     python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba flip-evaluator numpy
     cargo build --release
-    /tmp/mi/bin/python tools/mitsuba_reference.py [--size 256] [--spp 1024]
+    /tmp/mi/bin/python tools/mitsuba_reference.py [--global] [--size 256] [--spp 1024]
 """
 import argparse, os, struct, subprocess, tempfile
 import numpy as np
@@ -65,31 +68,40 @@ def main():
     args = argparse.ArgumentParser()
     args.add_argument("--size", type=int, default=256)
     args.add_argument("--spp", type=int, default=1024)
+    args.add_argument("--global", dest="global_", action="store_true")
     a = args.parse_args()
     mi.set_variant("scalar_rgb")
     folder = tempfile.mkdtemp()
     scene = {
         "type": "scene",
-        "integrator": {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0},
+        "integrator": ({"type": "path", "max_depth": -1, "rr_depth": 1000} if a.global_ else
+                       {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0}),
         "sensor": {
             "type": "perspective", "fov": 39.307648, "fov_axis": "y",
             "to_world": mi.ScalarTransform4f().look_at(origin=[278, 273, -800], target=[278, 273, 0], up=[0, 1, 0]),
             "film": {"type": "hdrfilm", "width": a.size, "height": a.size, "rfilter": {"type": "box"}, "pixel_format": "rgb"},
             "sampler": {"type": "stratified", "sample_count": a.spp},
         },
-        "lamp": {"type": "point", "position": [278.0, 548.6, 279.5],
-                 "intensity": {"type": "rgb", "value": [228437.5, 161250.0, 53750.0]}},
     }
+    if not a.global_:
+        scene["lamp"] = {"type": "point", "position": [278.0, 548.6, 279.5],
+                         "intensity": {"type": "rgb", "value": [228437.5, 161250.0, 53750.0]}}
     for name, (file, material) in split_obj("algorithms/models/cornell_box.obj", folder).items():
         scene[name] = {"type": "obj", "filename": file, "face_normals": True,
                        "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": MATERIALS[material]}}}
+        if a.global_ and name == "light":
+            scene[name]["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": [17.0, 12.0, 4.0]}}
     reference = np.array(mi.render(mi.load_dict(scene)))
     ours = os.path.join(folder, "lumiere.pfm")
-    subprocess.run(["target/release/lumiere", "render", "cornell-box-point", "--shadows", "ray-cast",
+    command = (["radiosity-gathering", "--element-size", "10", "--patch-size", "70"] if a.global_ else
+               ["cornell-box-point", "--shadows", "ray-cast"])
+    subprocess.run(["target/release/lumiere", "render", *command,
                     "--supersample", "4", "--width", str(a.size), "--height", str(a.size), "-o", ours], check=True)
     test = read_pfm(ours)
     _, mean, _ = flip.evaluate(srgb(reference).astype(np.float32), srgb(test).astype(np.float32), "LDR")
     print(f"FLIP (mean) lumiere vs Mitsuba 3: {mean:.5f}")
+    np.save(os.path.join(folder, "mitsuba.npy"), reference)
+    print(f"images in {folder}")
     print(f"mean radiance: Mitsuba {reference.mean(axis=(0, 1))}, lumiere {test.mean(axis=(0, 1))}")
 
 

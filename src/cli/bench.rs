@@ -23,6 +23,10 @@ pub struct Args {
     /// Image sizes (square) to time.
     #[arg(long, value_delimiter = ',', default_values_t = [512u32, 1024])]
     sizes: Vec<u32>,
+    /// Time radiosity solves of the first scene (a radiosity scene) at about these
+    /// element counts instead of renders.
+    #[arg(long, value_delimiter = ',')]
+    radiosity_elements: Vec<usize>,
     /// Runs per measurement; the median is reported.
     #[arg(long, default_value_t = 15)]
     runs: usize,
@@ -30,6 +34,10 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<()> {
     println!("threads: {}", rayon::current_num_threads());
+    if !args.radiosity_elements.is_empty() {
+        let runs = args.runs.min(3);
+        return super::bench_radiosity::run(&args.scenes[0], &args.radiosity_elements, runs);
+    }
     println!(
         "{:<26} {:<15} {:>10} {:>12} {:>14}",
         "scene", "variant", "size", "render (ms)", "fill (Mpix/s)"

@@ -1,6 +1,7 @@
 //! The command line: one file per subcommand.
 
 mod bench;
+mod bench_radiosity;
 mod compare;
 mod form_factors;
 mod list;

@@ -17,6 +17,7 @@ use super::form_factors::{Estimator, patch_factors};
 use super::mesh::Mesh;
 use anyhow::{Result, bail};
 use glam::DVec3;
+use std::time::{Duration, Instant};
 
 /// The gathering solution and its parts, kept for checks.
 pub struct Gathered {
@@ -28,6 +29,9 @@ pub struct Gathered {
     pub elements: Vec<DVec3>,
     /// Gauss–Seidel sweeps per band.
     pub sweeps: [usize; 3],
+    /// Time spent on the form factors, and on the solve.
+    pub form_factor_time: Duration,
+    pub solve_time: Duration,
 }
 
 /// Memory the stored factors need: M × n element factors (f32) and n × n patch
@@ -54,8 +58,11 @@ pub fn gather(
             memory_budget as f64 / (1u64 << 30) as f64
         );
     }
+    let start = Instant::now();
     let element_factors = estimator.element_to_patch(mesh);
     let patch_factors = patch_factors(mesh, &element_factors);
+    let form_factor_time = start.elapsed();
+    let start = Instant::now();
     let mut patches = vec![DVec3::ZERO; mesh.patches.len()];
     let mut sweeps = [0; 3];
     for band in 0..3 {
@@ -91,6 +98,8 @@ pub fn gather(
         patches,
         elements,
         sweeps,
+        form_factor_time,
+        solve_time: start.elapsed(),
     })
 }
 

@@ -90,10 +90,12 @@ fn nearest(
             return false;
         }
         let s = (polygon.vertices[0].position - from).dot(n) / denominator;
-        if s > 1e-12 && s <= 1.0 && best.is_none_or(|(b, _)| s < b) {
-            if contains(polygon, from + offset * s) {
-                best = Some((s, r));
-            }
+        if s > 1e-12
+            && s <= 1.0
+            && best.is_none_or(|(b, _)| s < b)
+            && contains(polygon, from + offset * s)
+        {
+            best = Some((s, r));
         }
         false
     });
