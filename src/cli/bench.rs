@@ -112,7 +112,8 @@ fn fill_rate(scene: &lumiere::Scene, runs: usize) -> f64 {
     (view.width * view.height) as f64 / sweep.as_secs_f64() / 1e6
 }
 
-fn median(runs: usize, mut f: impl FnMut()) -> Duration {
+/// The median time of `runs` calls of `f`, after one warm-up call.
+pub(super) fn median(runs: usize, mut f: impl FnMut()) -> Duration {
     f(); // warm-up
     let mut times: Vec<Duration> = (0..runs.max(1))
         .map(|_| {

@@ -6,7 +6,7 @@ use lumiere::load_scene;
 use lumiere::radiosity::gathering::gather;
 use lumiere::radiosity::{Division, Estimator, Shooting, Stop, mesh};
 use lumiere::scene::Scene;
-use std::time::{Duration, Instant};
+use super::bench::median;
 
 /// Times, for each wanted element count, shooting to the scene's unshot fraction and
 /// gathering (its form factors and its solve apart).
@@ -87,16 +87,4 @@ fn with_element_count(base: &Scene, count: usize) -> Result<Scene> {
         }
     }
     Ok(best.1)
-}
-
-fn median(runs: usize, mut f: impl FnMut()) -> Duration {
-    let mut times: Vec<Duration> = (0..runs.max(1))
-        .map(|_| {
-            let t = Instant::now();
-            f();
-            t.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[times.len() / 2]
 }

@@ -58,6 +58,9 @@ pub fn render(
     })?;
     frame_error?;
     bar.finish_and_clear();
+    for warning in &solution.mesh.warnings {
+        eprintln!("warning: {warning}");
+    }
     eprintln!("{}", solution.summary);
     let image = display::image(scene, &solution.mesh, &solution.elements, settings.display);
     if let Some(f) = frames {
