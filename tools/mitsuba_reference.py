@@ -5,7 +5,7 @@ Default: the point-lit box of `cornell-box-point`, Mitsuba's direct illumination
 against `render cornell-box-point --shadows ray-cast --supersample 4`.
 With --global: the box lit by its quad light with every diffuse bounce, Mitsuba's
 path tracer against the converged radiosity solution, `render radiosity-gathering
---element-size 10 --patch-size 70 --supersample 4`.
+--element-size 10 --patch-size 35 --supersample 4`.
 Both in Mitsuba's scalar_rgb variant with a box filter, at the same size, compared
 with NVIDIA's FLIP on the sRGB images. Not part of the test suite (it needs two
 large PyPI packages): run it by hand.
@@ -93,7 +93,7 @@ def main():
             scene[name]["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": [17.0, 12.0, 4.0]}}
     reference = np.array(mi.render(mi.load_dict(scene)))
     ours = os.path.join(folder, "lumiere.pfm")
-    command = (["radiosity-gathering", "--element-size", "10", "--patch-size", "70"] if a.global_ else
+    command = (["radiosity-gathering", "--element-size", "10", "--patch-size", "35"] if a.global_ else
                ["cornell-box-point", "--shadows", "ray-cast"])
     subprocess.run(["target/release/lumiere", "render", *command,
                     "--supersample", "4", "--width", str(a.size), "--height", str(a.size), "-o", ours], check=True)
