@@ -327,10 +327,7 @@ fn closed_box_factors_are_reciprocal_close_to_one_per_row_and_zero_on_the_diagon
             let sum: f64 = row.iter().sum();
             assert!((sum - 1.0).abs() < 0.01, "{method:?} row {i} sums to {sum}");
             for (j, f_ij) in row.iter().enumerate() {
-                let (a, b) = (
-                    mesh.patches[i].area * f_ij,
-                    mesh.patches[j].area * f[j][i],
-                );
+                let (a, b) = (mesh.patches[i].area * f_ij, mesh.patches[j].area * f[j][i]);
                 assert!(
                     (a - b).abs() <= 0.01 * a.max(b),
                     "{method:?} A{i} F{i}{j} = {a}, A{j} F{j}{i} = {b}"

@@ -1,12 +1,12 @@
 //! `lumiere bench --radiosity-elements N,…`: radiosity solve times on a catalogue
 //! radiosity scene as the element count grows.
 
+use super::bench::median;
 use anyhow::{Result, bail};
 use lumiere::load_scene;
 use lumiere::radiosity::gathering::gather;
 use lumiere::radiosity::{Division, Estimator, Shooting, Stop, mesh};
 use lumiere::scene::Scene;
-use super::bench::median;
 
 /// Times, for each wanted element count, shooting to the scene's unshot fraction and
 /// gathering (its form factors and its solve apart).
