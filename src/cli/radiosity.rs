@@ -32,6 +32,7 @@ pub fn render(
             .expect("a valid template"),
     );
     bar.set_message(format!("{:?} radiosity", settings.solver).to_lowercase());
+    bar.enable_steady_tick(std::time::Duration::from_millis(100));
     let exposure = scene.render.exposure;
     let mut animation: Vec<Image> = Vec::new();
     let mut frame_error = Ok(());
