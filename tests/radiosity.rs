@@ -710,3 +710,37 @@ mod properties {
         }
     }
 }
+
+#[test]
+fn gathering_and_shooting_converge_to_each_other_as_patches_shrink() {
+    // Shooting takes each factor at the shooter's centre, gathering at the
+    // receiver's: two different point samplings of the same patch-to-patch
+    // factors, which meet as the patches shrink (and the hemi-cube keeps up).
+    let scene = closed_cube(0.5, [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    let mut differences = Vec::new();
+    for (n, r) in [(2, 64), (4, 128), (8, 256)] {
+        let mut s = settings(Solver::Shooting, FormFactorMethod::Hemicube, 1);
+        s.patches = Division::Count(n);
+        s.resolution = r;
+        s.unshot = 1e-5;
+        let shot = solve(&scene, &s, &mut |_, _| {}).unwrap();
+        s.solver = Solver::Gathering;
+        let gathered = solve(&scene, &s, &mut |_, _| {}).unwrap();
+        let (mut d, mut t) = (0.0, 0.0);
+        for ((a, b), e) in shot
+            .elements
+            .iter()
+            .zip(&gathered.elements)
+            .zip(&shot.mesh.elements)
+        {
+            d += (a.x - b.x).abs() as f64 * e.area;
+            t += b.x as f64 * e.area;
+        }
+        differences.push(d / t);
+    }
+    eprintln!("{differences:?}");
+    assert!(
+        differences.windows(2).all(|w| w[1] < w[0]),
+        "{differences:?}"
+    );
+}
