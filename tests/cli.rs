@@ -667,3 +667,37 @@ fn form_factors_prints_the_matrix_as_json() {
     assert_ne!(run.code, 0);
     assert!(!run.stderr.contains("panicked"));
 }
+
+#[test]
+fn a_bent_obj_face_is_split_with_a_warning() {
+    let obj = scene(CAMERA, "").replace(
+        "shape = \"quad\"\nmaterial = \"grey\"",
+        "shape = \"obj\"\nfile = \"bent.obj\"\nmaterial = \"grey\"",
+    );
+    // A unit square with one corner raised by half its side.
+    let bent = "v 0 0 0\nv 1 0 0\nv 1 0.5 1\nv 0 0 1\nf 1 2 3 4\n";
+    let dir = workspace(&[("s.toml", &obj), ("bent.obj", bent)]);
+    let run = lumiere(&["render", "s.toml", "-o", "out.png"], dir.path());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stderr.starts_with("warning: bent.obj"),
+        "{}",
+        run.stderr
+    );
+    assert!(run.stderr.contains("is not planar"), "{}", run.stderr);
+    // The measured Cornell box's red wall is only 0.2% off: no warning.
+    let run = lumiere(
+        &[
+            "render",
+            "cornell-box",
+            "--width",
+            "8",
+            "--height",
+            "8",
+            "-o",
+            "c.png",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.stderr, "");
+}

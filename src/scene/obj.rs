@@ -14,6 +14,9 @@ use std::path::Path;
 
 /// Relative distance from a face's plane above which a face counts as non-planar.
 const PLANARITY_TOLERANCE: f64 = 1e-9;
+/// Above this a non-planar face is reported: it is visibly bent, not measured data
+/// a little off true (the Cornell box's red wall is 0.2% off its plane).
+const WARN_NON_PLANAR: f64 = 0.01;
 
 /// One OBJ model: its faces with, per face, the name of its MTL material.
 pub struct ObjModel {
@@ -74,6 +77,16 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
                 .map(|k| corner(mesh, k, smooth))
                 .collect();
             start += arity;
+            let positions: Vec<DVec3> = face.iter().map(|v| v.position).collect();
+            let bend = non_planarity(&positions);
+            if bend > WARN_NON_PLANAR {
+                out.warnings.push(format!(
+                    "{}: object {}: a face is not planar ({:.1}% of its size off its plane): split into triangles",
+                    path.display(),
+                    model.name,
+                    100.0 * bend
+                ));
+            }
             for polygon in planar_pieces(face) {
                 let positions: Vec<DVec3> = polygon.iter().map(|v| v.position).collect();
                 let measure = area(&positions);
