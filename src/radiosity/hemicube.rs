@@ -67,17 +67,13 @@ impl Hemicube {
         }
     }
 
-    pub fn resolution(&self) -> u32 {
-        self.resolution
-    }
-
     /// Sums of the delta form factors: the top face's and one side's.
     pub fn face_sums(&self) -> (f64, f64) {
         (self.top.iter().sum(), self.side.iter().sum())
     }
 
     /// The five faces' views from `centre` with the top face along `normal`.
-    pub fn views(&self, centre: DVec3, normal: DVec3) -> [View; 5] {
+    fn views(&self, centre: DVec3, normal: DVec3) -> [View; 5] {
         let (t, b) = normal.any_orthonormal_pair();
         let r = self.resolution;
         let half = r as f64 / 2.0;

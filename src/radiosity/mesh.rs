@@ -78,7 +78,8 @@ impl Mesh {
         let mut mesh = Mesh::default();
         for (id, polygon) in scene.polygons.iter().enumerate() {
             let corners: Vec<DVec3> = polygon.positions().collect();
-            if area(&corners) <= 0.0 || !area(&corners).is_finite() {
+            let measure = area(&corners);
+            if measure <= 0.0 || !measure.is_finite() {
                 mesh.warnings.push(format!(
                     "polygon {id} of object `{}` has no area: left out of the radiosity mesh",
                     scene.objects[polygon.object].name
