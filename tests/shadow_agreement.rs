@@ -151,6 +151,43 @@ fn shadow_volumes_leak_on_an_open_mesh() {
     );
 }
 
+mod closed_shapes {
+    use super::*;
+    use lumiere::scene::{scene_from_table, tables};
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        /// Spheres and capped cylinders of any resolution, under any rotation, scale and
+        /// translation, are closed 2-manifolds.
+        #[test]
+        fn generated_spheres_and_cylinders_are_closed(
+            resolution in 4u32..70,
+            axis in (-1.0..1.0f64, -1.0..1.0f64, 0.1..1.0f64),
+            degrees in -180.0..180.0f64,
+            scale in (0.1..3.0f64, 0.1..3.0f64, 0.1..3.0f64),
+            offset in (-5.0..5.0f64, -5.0..5.0f64, -5.0..5.0f64),
+        ) {
+            let transform = format!(
+                "[{{ scale = [{}, {}, {}] }}, {{ rotate = {{ axis = [{}, {}, {}], degrees = {degrees} }} }}, {{ translate = [{}, {}, {}] }}]",
+                scale.0, scale.1, scale.2, axis.0, axis.1, axis.2, offset.0, offset.1, offset.2
+            );
+            let text = format!(
+                "[camera]\neye = [0.0, 0.0, 9.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 8\nheight = 8\n\
+                 [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+                 [[objects]]\nshape = \"sphere\"\nname = \"sphere\"\nmaterial = \"grey\"\nresolution = {resolution}\ntransform = {transform}\n\
+                 [[objects]]\nshape = \"cylinder\"\nname = \"cylinder\"\nmaterial = \"grey\"\nresolution = {resolution}\ntransform = {transform}\n"
+            );
+            let table = tables::parse(&text, "test scene").unwrap();
+            let scene = scene_from_table(table, &lumiere::catalogue::resources())
+                .map_err(|e| format!("{e:#}"))
+                .unwrap();
+            let open = lumiere::shadow::shadow_volumes::open_objects(&scene);
+            prop_assert!(open.is_empty(), "open: {:?}", open);
+        }
+    }
+}
+
 mod edge_cases {
     use super::*;
 

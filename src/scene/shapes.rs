@@ -70,12 +70,20 @@ pub fn sphere(resolution: u32, smooth: bool) -> Faces {
     let rings = (resolution as usize / 2).max(2);
     let point = |i: usize, j: usize| {
         let (u, v) = (i as f64 / segments as f64, j as f64 / rings as f64);
-        let (phi, theta) = (u * TAU, v * PI);
-        let position = DVec3::new(
-            theta.sin() * phi.cos(),
-            theta.cos(),
-            -theta.sin() * phi.sin(),
-        );
+        // The seam and the poles are computed once, so that neighbouring faces share
+        // their corners bit for bit (sin 2π and sin π are not zero in floating point)
+        // and the sphere is a closed mesh.
+        let phi = (i % segments) as f64 / segments as f64 * TAU;
+        let theta = v * PI;
+        let position = if j == 0 || j == rings {
+            DVec3::new(0.0, theta.cos().signum(), 0.0)
+        } else {
+            DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                -theta.sin() * phi.sin(),
+            )
+        };
         Vertex {
             position,
             normal: position,
@@ -134,7 +142,8 @@ pub fn cylinder(resolution: u32, caps: bool, smooth: bool) -> Faces {
     let n = resolution as usize;
     let rim = |i: usize, y: f64| {
         let u = i as f64 / n as f64;
-        let phi = u * TAU;
+        // The seam is computed once, so that the last quad shares the first one's edge.
+        let phi = (i % n) as f64 / n as f64 * TAU;
         let radial = DVec3::new(phi.cos(), 0.0, -phi.sin());
         Vertex {
             position: radial + DVec3::new(0.0, y, 0.0),
