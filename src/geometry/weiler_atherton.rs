@@ -83,15 +83,7 @@ struct Located<'a> {
 
 impl<'a> Located<'a> {
     fn new(region: &'a Region) -> Located<'a> {
-        let boxes = region
-            .iter()
-            .map(|c| {
-                c.iter().fold(
-                    (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-                    |(lo, hi), q| (lo.min(*q), hi.max(*q)),
-                )
-            })
-            .collect();
+        let boxes = region.iter().map(bounds).collect();
         Located { region, boxes }
     }
 
@@ -106,7 +98,20 @@ impl<'a> Located<'a> {
     }
 }
 
+/// Bounding box of a set of points.
+fn bounds<'a>(points: impl IntoIterator<Item = &'a DVec2>) -> (DVec2, DVec2) {
+    points.into_iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), q| (lo.min(*q), hi.max(*q)),
+    )
+}
+
 /// A ∩ B and A − B.
+///
+/// Only the subject's contours whose boxes meet the clip region's box take part: a
+/// contour away from it winds around no point of B, so it adds nothing to A ∩ B and
+/// passes to A − B as it is (the holes that earlier clips punched into a large
+/// polygon are thus not clipped again by every later one).
 pub fn clip(subject: &Region, clip: &Region) -> (Region, Region) {
     let size = subject
         .iter()
@@ -114,6 +119,24 @@ pub fn clip(subject: &Region, clip: &Region) -> (Region, Region) {
         .flatten()
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()))
         .max(1e-300);
+    // The box grown by more than the largest perturbation below.
+    let (lo, hi) = bounds(clip.iter().flatten());
+    let margin = DVec2::splat(4e-6 * size);
+    let (lo, hi) = (lo - margin, hi + margin);
+    let (near, far): (Region, Region) = subject.iter().cloned().partition(|c| {
+        let (clo, chi) = bounds(c);
+        clo.x <= hi.x && clo.y <= hi.y && chi.x >= lo.x && chi.y >= lo.y
+    });
+    if near.is_empty() {
+        return (Vec::new(), far);
+    }
+    let (inside, mut outside) = clip_near(&near, clip, size);
+    outside.extend(far);
+    (inside, outside)
+}
+
+/// A ∩ B and A − B for operands of the given size, by perturbed clipping.
+fn clip_near(subject: &Region, clip: &Region, size: f64) -> (Region, Region) {
     let (whole, limit) = (area(subject), area(subject).min(area(clip)));
     let mut result = (Vec::new(), Vec::new());
     for salt in 0..PERTURBATION_TRIES {

@@ -61,22 +61,35 @@ struct Piece {
     source: u32,
     region: Region,
     plane: DepthPlane,
+    /// The largest ζ = 1/depth over the region's vertices: its sort key.
+    nearest: f64,
+    /// The region's bounding box.
+    bounds: (DVec2, DVec2),
 }
 
 impl Piece {
-    fn nearest(&self) -> f64 {
-        self.region
+    fn new(source: u32, region: Region, plane: DepthPlane) -> Piece {
+        let nearest = region
             .iter()
             .flatten()
-            .map(|p| self.plane.zeta(p.x, p.y))
-            .fold(f64::NEG_INFINITY, f64::max)
-    }
-
-    fn bounds(&self) -> (DVec2, DVec2) {
-        self.region.iter().flatten().fold(
+            .map(|p| plane.zeta(p.x, p.y))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let bounds = region.iter().flatten().fold(
             (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
             |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-        )
+        );
+        Piece {
+            source,
+            region,
+            plane,
+            nearest,
+            bounds,
+        }
+    }
+
+    /// The same polygon's piece over another region.
+    fn with_region(&self, region: Region) -> Piece {
+        Piece::new(self.source, region, self.plane)
     }
 }
 
@@ -105,11 +118,7 @@ pub fn lit_polygons(scene: &Scene, light: DVec3) -> Vec<Vec<DetailPolygon>> {
                     if weiler_atherton::contour_area(&contour) < 0.0 {
                         contour.reverse();
                     }
-                    Some(Piece {
-                        source: id as u32,
-                        region: vec![contour],
-                        plane: screen.plane,
-                    })
+                    Some(Piece::new(id as u32, vec![contour], screen.plane))
                 })
                 .collect();
             hidden_surface(pieces)
@@ -150,21 +159,18 @@ fn hidden_surface(mut pieces: Vec<Piece>) -> Vec<Piece> {
     sort_nearest_first(&mut pieces);
     while !pieces.is_empty() {
         let front = pieces.remove(0);
-        let (lo, hi) = front.bounds();
+        let (lo, hi) = front.bounds;
         let mut shown = front.region.clone();
         let mut rest = Vec::with_capacity(pieces.len());
         for piece in pieces.drain(..) {
-            let (plo, phi) = piece.bounds();
+            let (plo, phi) = piece.bounds;
             if plo.x > hi.x || plo.y > hi.y || phi.x < lo.x || phi.y < lo.y {
                 rest.push(piece);
                 continue;
             }
             let (inside, outside) = weiler_atherton::clip(&piece.region, &front.region);
             if area(&outside) > sliver {
-                rest.push(Piece {
-                    region: outside,
-                    ..piece.clone()
-                });
+                rest.push(piece.with_region(outside));
             }
             if area(&inside) <= sliver {
                 continue;
@@ -182,17 +188,11 @@ fn hidden_surface(mut pieces: Vec<Piece>) -> Vec<Piece> {
                 .collect();
             if area(&ahead) > sliver {
                 shown = weiler_atherton::clip(&shown, &ahead).1;
-                rest.push(Piece {
-                    region: ahead,
-                    ..piece
-                });
+                rest.push(piece.with_region(ahead));
             }
         }
         if area(&shown) > sliver {
-            visible.push(Piece {
-                region: shown,
-                ..front
-            });
+            visible.push(front.with_region(shown));
         }
         pieces = rest;
         sort_nearest_first(&mut pieces);
@@ -202,8 +202,8 @@ fn hidden_surface(mut pieces: Vec<Piece>) -> Vec<Piece> {
 
 fn sort_nearest_first(pieces: &mut [Piece]) {
     pieces.sort_by(|a, b| {
-        b.nearest()
-            .total_cmp(&a.nearest())
+        b.nearest
+            .total_cmp(&a.nearest)
             .then(a.source.cmp(&b.source))
     });
 }
