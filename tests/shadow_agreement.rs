@@ -163,7 +163,6 @@ fn the_curved_scene_is_made_of_closed_meshes() {
 }
 
 mod closed_shapes {
-    use super::*;
     use lumiere::scene::{scene_from_table, tables};
     use proptest::prelude::*;
 
