@@ -21,7 +21,8 @@
 //! to handle; a cone wider than a hemisphere is taken as the whole sphere. The slab
 //! stops a relative 1e-6 short of the light's own distance to R's plane (points level
 //! with the light project to infinity). Pruning changes only the cost: `prune =
-//! false` gives the same image. Scene key: `[shadows] method = "scanline"`.
+//! false` gives the same image. Shadow polygons are projected only onto receivers
+//! the eye sees somewhere: the others are never scanned out. Scene key: `[shadows] method = "scanline"`.
 
 use super::per_sample;
 use crate::geometry::sutherland_hodgman::clip;
@@ -36,6 +37,9 @@ use std::f64::consts::PI;
 struct Cone {
     axis: DVec3,
     half_angle: f64,
+    /// cos and sin of the half-angle.
+    cos: f64,
+    sin: f64,
 }
 
 impl Cone {
@@ -54,29 +58,48 @@ impl Cone {
             .map(|d| d.dot(axis).clamp(-1.0, 1.0).acos())
             .fold(0.0, f64::max);
         if axis == DVec3::ZERO || half_angle >= 0.5 * PI {
-            Cone {
-                axis: DVec3::Z,
-                half_angle: PI,
-            }
+            Cone::new(DVec3::Z, PI)
         } else {
-            Cone { axis, half_angle }
+            Cone::new(axis, half_angle)
         }
     }
 
+    fn new(axis: DVec3, half_angle: f64) -> Cone {
+        let (sin, cos) = half_angle.sin_cos();
+        Cone {
+            axis,
+            half_angle,
+            cos,
+            sin,
+        }
+    }
+
+    /// Whether the angle between the axes is at most the sum of the half-angles,
+    /// compared by cosines (cos is decreasing on [0, π]; cos(a + b) from each cone's
+    /// own cosine and sine) to spare n² trigonometric calls.
     fn overlaps(&self, other: &Cone) -> bool {
-        let between = self.axis.dot(other.axis).clamp(-1.0, 1.0).acos();
-        between <= self.half_angle + other.half_angle
+        self.half_angle + other.half_angle >= PI
+            || self.axis.dot(other.axis) >= self.cos * other.cos - self.sin * other.sin - 1e-12
     }
 }
 
-/// The pre-pass: per receiver, its shadow polygons (world space, on its plane).
-pub fn shadow_polygons(scene: &Scene, light: DVec3, prune: bool) -> Vec<Vec<Vec<DVec3>>> {
+/// The pre-pass: per receiver, its shadow polygons (world space, on its plane), for
+/// the receivers for which `wanted` holds (the others get none).
+pub fn shadow_polygons(
+    scene: &Scene,
+    light: DVec3,
+    prune: bool,
+    wanted: impl Fn(usize) -> bool + Sync,
+) -> Vec<Vec<Vec<DVec3>>> {
     let cones: Vec<Cone> = scene.polygons.iter().map(|p| Cone::of(p, light)).collect();
     scene
         .polygons
         .par_iter()
         .enumerate()
         .map(|(r, receiver)| {
+            if !wanted(r) {
+                return Vec::new();
+            }
             let origin = receiver.vertices[0].position;
             // Signed distance to R's plane, positive on the light's side.
             let side = receiver.normal.dot(light - origin).signum();
@@ -129,7 +152,13 @@ pub fn visibility_with(
     light: DVec3,
     prune: bool,
 ) -> Vec<f32> {
-    let lists = shadow_polygons(scene, light, prune);
+    // Only receivers seen from the eye are scanned out, so only they need their
+    // shadow polygons.
+    let mut seen = vec![false; scene.polygons.len()];
+    for s in surface.samples.iter().filter(|s| !s.is_empty()) {
+        seen[s.polygon as usize] = true;
+    }
+    let lists = shadow_polygons(scene, light, prune, |r| seen[r]);
     let width = surface.width as usize;
     // The visible span segments of each row: runs of one polygon.
     let segments: Vec<Vec<(u32, u32, u32)>> = surface
