@@ -625,6 +625,14 @@ fn radiosity_bad_input() {
             ),
             "use the shooting solver",
         ),
+        (
+            radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "subdivide = -0.1"),
+            "radiosity.subdivide",
+        ),
+        (
+            radiosity_scene("0.5", "[1.0, 1.0, 1.0]", "subdivide = 0.1"),
+            "use the gathering solver",
+        ),
     ] {
         let dir = workspace(&[("s.toml", &text)]);
         let run = lumiere(&["render", "s.toml", "-o", "out.png"], dir.path());

@@ -353,6 +353,7 @@ fn settings(solver: Solver, method: FormFactorMethod, elements: u32) -> Settings
         ambient: false,
         display: Display::Gouraud,
         memory_budget: 1 << 30,
+        subdivision: None,
     }
 }
 

@@ -50,6 +50,13 @@ pub struct Args {
     /// Longest element side, in scene units.
     #[arg(long)]
     element_size: Option<f64>,
+    /// Gathering: adaptive subdivision of elements differing from a neighbour by
+    /// more than this fraction of the largest reflected radiosity.
+    #[arg(long, value_name = "FRACTION")]
+    subdivide: Option<f64>,
+    /// Gathering: rounds of adaptive subdivision (default 2).
+    #[arg(long, value_name = "N")]
+    subdivision_levels: Option<u32>,
     /// Shooting: stop after this many steps.
     #[arg(long)]
     steps: Option<usize>,
@@ -147,6 +154,12 @@ fn radiosity_sets(args: &Args) -> Vec<String> {
     }
     if let Some(e) = args.element_size {
         sets.push(format!("radiosity.element_size={e:?}"));
+    }
+    if let Some(t) = args.subdivide {
+        sets.push(format!("radiosity.subdivide={t:?}"));
+    }
+    if let Some(n) = args.subdivision_levels {
+        sets.push(format!("radiosity.subdivision_levels={n}"));
     }
     if let Some(n) = args.steps {
         sets.push(format!("radiosity.max_steps={n}"));

@@ -6,6 +6,8 @@
 //!
 //! Choice left open (the paper's rule is uncertain): every vertex takes the plain
 //! mean of the elements that share it, boundary vertices included (no extrapolation).
+//! After adaptive subdivision an element is drawn through the midpoints its finer
+//! neighbours put on its sides, which share their values (no Gouraud cracks).
 
 use super::mesh::Mesh;
 use crate::output::Image;
@@ -58,8 +60,8 @@ pub fn image(scene: &Scene, mesh: &Mesh, elements: &[Vec3], display: Display) ->
         .enumerate()
         .map(|(e, element)| {
             let normal = mesh.patches[element.patch].normal;
-            let vertices = element
-                .corners
+            let outline = mesh.outline(e);
+            let vertices = outline
                 .iter()
                 .map(|&v| Vertex {
                     position: mesh.vertices[v as usize],
@@ -67,8 +69,7 @@ pub fn image(scene: &Scene, mesh: &Mesh, elements: &[Vec3], display: Display) ->
                     uv: DVec2::ZERO,
                 })
                 .collect();
-            let colors = element
-                .corners
+            let colors = outline
                 .iter()
                 .map(|&v| match display {
                     Display::Gouraud => at_vertices[v as usize] * to_radiance,

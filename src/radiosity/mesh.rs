@@ -68,6 +68,9 @@ pub struct Mesh {
     pub vertices: Vec<DVec3>,
     pub patches: Vec<Patch>,
     pub elements: Vec<Element>,
+    /// Edges cut by adaptive subdivision (`refine`), by their end vertices (the
+    /// smaller index first): the vertex at their midpoint.
+    pub midpoints: HashMap<(u32, u32), u32>,
     /// Polygons left out, and why (zero area).
     pub warnings: Vec<String>,
 }
@@ -123,15 +126,112 @@ impl Mesh {
             .sum()
     }
 
-    /// Per vertex, the elements whose corner it is.
+    /// Per vertex, the elements whose outline passes through it (`outline`).
     pub fn vertex_elements(&self) -> Vec<Vec<u32>> {
         let mut users = vec![Vec::new(); self.vertices.len()];
-        for (e, element) in self.elements.iter().enumerate() {
-            for &v in &element.corners {
+        for e in 0..self.elements.len() {
+            for v in self.outline(e) {
                 users[v as usize].push(e as u32);
             }
         }
         users
+    }
+
+    /// Element `e`'s outline for display: its corners with, along each side, the
+    /// midpoints a subdivided neighbour put there (T-vertices). Drawn through them,
+    /// the element takes the neighbours' values at those points, so Gouraud shading
+    /// does not crack along the side.
+    pub fn outline(&self, e: usize) -> Vec<u32> {
+        let corners = &self.elements[e].corners;
+        let mut outline = Vec::with_capacity(corners.len());
+        for (k, &a) in corners.iter().enumerate() {
+            outline.push(a);
+            self.push_midpoints(a, corners[(k + 1) % corners.len()], &mut outline);
+        }
+        outline
+    }
+
+    /// The midpoints strictly between `a` and `b`, in order from `a`.
+    fn push_midpoints(&self, a: u32, b: u32, out: &mut Vec<u32>) {
+        if let Some(&m) = self.midpoints.get(&(a.min(b), a.max(b))) {
+            self.push_midpoints(a, m, out);
+            out.push(m);
+            self.push_midpoints(m, b, out);
+        }
+    }
+
+    /// The vertex halfway along the edge `a`–`b`, made on first use.
+    fn midpoint(&mut self, a: u32, b: u32) -> u32 {
+        let key = (a.min(b), a.max(b));
+        if let Some(&m) = self.midpoints.get(&key) {
+            return m;
+        }
+        let m = self.vertices.len() as u32;
+        self.vertices
+            .push(0.5 * (self.vertices[a as usize] + self.vertices[b as usize]));
+        self.midpoints.insert(key, m);
+        m
+    }
+
+    /// Adaptive subdivision (Cohen et al. 1986): a mesh in which every `marked`
+    /// element is cut into four, quads at their side midpoints and centre, triangles
+    /// at their side midpoints. Patches are unchanged; each keeps its elements
+    /// together. Returns the mesh and, per new element, the element of `self` it
+    /// is (`Ok`) or was cut from (`Err`).
+    pub fn refine(&self, marked: &[bool]) -> (Mesh, Vec<Result<usize, usize>>) {
+        let mut mesh = Mesh {
+            vertices: self.vertices.clone(),
+            patches: self.patches.clone(),
+            elements: Vec::with_capacity(self.elements.len()),
+            midpoints: self.midpoints.clone(),
+            warnings: self.warnings.clone(),
+        };
+        let mut origin = Vec::with_capacity(self.elements.len());
+        for (p, patch) in self.patches.iter().enumerate() {
+            let first = mesh.elements.len();
+            for e in patch.elements.clone() {
+                if !marked[e] {
+                    mesh.elements.push(self.elements[e].clone());
+                    origin.push(Ok(e));
+                    continue;
+                }
+                let c = self.elements[e].corners.clone();
+                let m: Vec<u32> = (0..c.len())
+                    .map(|k| mesh.midpoint(c[k], c[(k + 1) % c.len()]))
+                    .collect();
+                let children = if c.len() == 4 {
+                    let centre = mesh.vertices.len() as u32;
+                    let mean = c.iter().map(|&v| mesh.vertices[v as usize]).sum::<DVec3>() / 4.0;
+                    mesh.vertices.push(mean);
+                    vec![
+                        vec![c[0], m[0], centre, m[3]],
+                        vec![m[0], c[1], m[1], centre],
+                        vec![centre, m[1], c[2], m[2]],
+                        vec![m[3], centre, m[2], c[3]],
+                    ]
+                } else {
+                    vec![
+                        vec![c[0], m[0], m[2]],
+                        vec![m[0], c[1], m[1]],
+                        vec![m[2], m[1], c[2]],
+                        vec![m[0], m[1], m[2]],
+                    ]
+                };
+                for corners in children {
+                    let positions: Vec<DVec3> =
+                        corners.iter().map(|&v| mesh.vertices[v as usize]).collect();
+                    mesh.elements.push(Element {
+                        patch: p,
+                        centre: area_centroid(&positions),
+                        area: area(&positions),
+                        corners,
+                    });
+                    origin.push(Err(e));
+                }
+            }
+            mesh.patches[p].elements = first..mesh.elements.len();
+        }
+        (mesh, origin)
     }
 
     /// World corners of element `e`.

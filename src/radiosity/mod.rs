@@ -17,6 +17,7 @@ pub mod mesh;
 pub mod nusselt;
 pub mod receivers;
 pub mod shooting;
+pub mod subdivision;
 
 use crate::output::Image;
 use crate::scene::Scene;
@@ -26,6 +27,7 @@ pub use form_factors::{Estimator, FormFactorMethod};
 use glam::Vec3;
 pub use mesh::{Division, Mesh};
 pub use shooting::{Shooting, Stop};
+pub use subdivision::Subdivision;
 
 /// Which solver.
 #[derive(
@@ -68,6 +70,8 @@ pub struct Settings {
     pub display: Display,
     /// Gathering: the most memory its stored form factors may take, in bytes.
     pub memory_budget: u64,
+    /// Gathering: adaptive subdivision of the elements after the solve.
+    pub subdivision: Option<Subdivision>,
 }
 
 /// A solved scene: its mesh and the radiosity to display for every element.
@@ -81,6 +85,11 @@ pub struct Solution {
 /// Meshes `scene` and checks it can be solved: every reflectance below 1 (checked
 /// by the mesher), something emitting.
 pub fn mesh(scene: &Scene, settings: &Settings) -> Result<Mesh> {
+    if settings.subdivision.is_some() && settings.solver != Solver::Gathering {
+        bail!(
+            "adaptive subdivision refines a gathering solution (Cohen et al. 1986): use the gathering solver, or leave `subdivide` out"
+        );
+    }
     let mesh = Mesh::build(scene, settings.patches, settings.elements)?;
     if mesh.emitted_power().max_element() <= 0.0 {
         bail!(
@@ -107,14 +116,26 @@ pub fn solve(
                 settings.tolerance,
                 settings.memory_budget,
             )?;
-            let summary = format!(
+            let mut summary = format!(
                 "gathering: {} patches, {} elements, Gauss-Seidel sweeps (r, g, b) {:?}",
                 mesh.patches.len(),
                 mesh.elements.len(),
                 g.sweeps
             );
+            let (mesh, elements) = match settings.subdivision {
+                None => (mesh, g.elements),
+                Some(s) => {
+                    let r = subdivision::refine(mesh, g.elements, &g.patches, &estimator, s);
+                    summary += &format!(
+                        "; adaptive subdivision cut {:?} elements, {} in the end",
+                        r.cut,
+                        r.mesh.elements.len()
+                    );
+                    (r.mesh, r.elements)
+                }
+            };
             Ok(Solution {
-                elements: g.elements.iter().map(|b| b.as_vec3()).collect(),
+                elements: elements.iter().map(|b| b.as_vec3()).collect(),
                 mesh,
                 summary,
             })

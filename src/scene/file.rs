@@ -53,6 +53,11 @@ pub struct RadiosityFile {
     pub display: crate::radiosity::Display,
     #[serde(default = "max_memory_mb")]
     pub max_memory_mb: u64,
+    /// Gathering: cut elements differing from a neighbour by more than this
+    /// fraction of the largest reflected radiosity (absent: no adaptive subdivision).
+    pub subdivide: Option<f64>,
+    #[serde(default = "subdivision_levels")]
+    pub subdivision_levels: u32,
 }
 
 fn hemicube_resolution() -> u32 {
@@ -69,6 +74,9 @@ fn max_steps() -> usize {
 }
 fn max_memory_mb() -> u64 {
     4096
+}
+fn subdivision_levels() -> u32 {
+    2
 }
 
 /// `[shadows]`: which method, and the shadow map's settings.

@@ -1,7 +1,7 @@
 //! `[radiosity]` from the file, checked.
 
 use super::file::RadiosityFile;
-use crate::radiosity::{Division, Settings};
+use crate::radiosity::{Division, Settings, Subdivision};
 use anyhow::{Result, ensure};
 
 pub fn from_file(r: &RadiosityFile) -> Result<Settings> {
@@ -36,6 +36,17 @@ pub fn from_file(r: &RadiosityFile) -> Result<Settings> {
         r.max_memory_mb > 0,
         "radiosity.max_memory_mb must be positive"
     );
+    if let Some(t) = r.subdivide {
+        ensure!(
+            t.is_finite() && t > 0.0,
+            "radiosity.subdivide must be a positive fraction, got {t}"
+        );
+    }
+    ensure!(
+        r.subdivision_levels <= 8,
+        "radiosity.subdivision_levels must be at most 8 (each level can quadruple the elements), got {}",
+        r.subdivision_levels
+    );
     Ok(Settings {
         solver: r.solver,
         form_factors: r.form_factors,
@@ -48,5 +59,9 @@ pub fn from_file(r: &RadiosityFile) -> Result<Settings> {
         ambient: r.ambient,
         display: r.display,
         memory_budget: r.max_memory_mb << 20,
+        subdivision: r.subdivide.map(|threshold| Subdivision {
+            threshold,
+            levels: r.subdivision_levels,
+        }),
     })
 }
