@@ -99,7 +99,7 @@ impl<'a> Located<'a> {
 }
 
 /// Bounding box of a set of points.
-fn bounds<'a>(points: impl IntoIterator<Item = &'a DVec2>) -> (DVec2, DVec2) {
+pub fn bounds<'a>(points: impl IntoIterator<Item = &'a DVec2>) -> (DVec2, DVec2) {
     points.into_iter().fold(
         (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
         |(lo, hi), q| (lo.min(*q), hi.max(*q)),

@@ -74,10 +74,7 @@ impl Piece {
             .flatten()
             .map(|p| plane.zeta(p.x, p.y))
             .fold(f64::NEG_INFINITY, f64::max);
-        let bounds = region.iter().flatten().fold(
-            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-            |(lo, hi), p| (lo.min(*p), hi.max(*p)),
-        );
+        let bounds = weiler_atherton::bounds(region.iter().flatten());
         Piece {
             source,
             region,
