@@ -14,6 +14,7 @@ pub mod radiosity;
 pub mod raster;
 pub mod render;
 pub mod scene;
+pub mod settings;
 pub mod shading;
 pub mod shadow;
 pub mod texture;

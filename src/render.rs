@@ -2,7 +2,7 @@
 //! terms, shading, and the box filter down to pixels.
 
 use crate::output::Image;
-use crate::raster::{ScreenPolygon, ToPrepare, View, VisibleSurface, prepare, rasterize};
+use crate::raster::{ToPrepare, View, VisibleSurface, prepare, rasterize, sample_view};
 use crate::scene::Scene;
 use crate::shading::{shade, vertex_colors};
 use crate::shadow::Visibility;
@@ -30,30 +30,6 @@ pub fn visible_surface(scene: &Scene) -> (View, VisibleSurface) {
     );
     let surface = rasterize(&polygons, view.width, view.height);
     (view, surface)
-}
-
-/// The scene's polygons on `view`'s screen, without vertex colours (passes that need
-/// only coverage and depth: shadow maps, benchmarks).
-pub fn screen_polygons(scene: &Scene, view: &View) -> Vec<ScreenPolygon> {
-    prepare(
-        view,
-        scene.polygons.iter().enumerate().map(|(id, p)| ToPrepare {
-            id: id as u32,
-            vertices: &p.vertices,
-            colors: &[],
-            affine_uv: false,
-        }),
-    )
-}
-
-/// The view of the scene's sample grid.
-pub fn sample_view(scene: &Scene) -> View {
-    let n = scene.render.supersample;
-    View::new(
-        &scene.camera,
-        scene.camera.width * n,
-        scene.camera.height * n,
-    )
 }
 
 /// In Williams's post-pass, what a shadowed pixel keeps of its radiance.

@@ -4,10 +4,10 @@ mod common;
 
 use common::{origin_view, screen_polygon};
 use glam::{DVec3, Vec3};
+use lumiere::geometry::lambert_contour::projected_solid_angle;
 use lumiere::raster::{NO_POLYGON, ScreenPolygon, rasterize, zbuffer};
 use lumiere::render::visible_surface;
 use lumiere::scene::{Light, Scene};
-use lumiere::shading::lambert_contour::projected_solid_angle;
 use lumiere::{load_scene, render};
 use proptest::prelude::*;
 use std::f64::consts::PI;

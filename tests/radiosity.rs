@@ -5,6 +5,7 @@
 //! solvers against each other.
 
 use glam::{DVec3, Vec3};
+use lumiere::geometry::lambert_contour::form_factor;
 use lumiere::radiosity::form_factors::patch_factors;
 use lumiere::radiosity::gathering::{gather, gauss_seidel};
 use lumiere::radiosity::hemicube::Hemicube;
@@ -15,7 +16,6 @@ use lumiere::radiosity::{
 };
 use lumiere::scene::tables;
 use lumiere::scene::{Scene, scene_from_table};
-use lumiere::shading::lambert_contour::form_factor;
 use std::f64::consts::PI;
 
 // ---------------------------------------------------------------------------

@@ -1,10 +1,10 @@
 //! `lumiere bench`: how fast the renderer is, on this machine.
 
+use super::timing::median;
 use anyhow::Result;
 use lumiere::shadow::ShadowMethod;
 use lumiere::texture::Filter;
 use lumiere::{load_scene, raster, render};
-use std::time::{Duration, Instant};
 
 /// Time whole renders (median of several runs) per scene, variant (shadow method or
 /// texture filter) and size, and the scan-line pass's fill rate.
@@ -104,24 +104,10 @@ fn variants(args: &Args, scene_name: &str) -> Result<Vec<(String, Vec<String>)>>
 
 /// Mpixels per second of the visible-surface pass alone (polygons prepared once).
 fn fill_rate(scene: &lumiere::Scene, runs: usize) -> f64 {
-    let view = render::sample_view(scene);
-    let polygons = render::screen_polygons(scene, &view);
+    let view = lumiere::raster::sample_view(scene);
+    let polygons = lumiere::raster::screen_polygons(scene, &view);
     let sweep = median(runs, || {
         std::hint::black_box(raster::rasterize(&polygons, view.width, view.height));
     });
     (view.width * view.height) as f64 / sweep.as_secs_f64() / 1e6
-}
-
-/// The median time of `runs` calls of `f`, after one warm-up call.
-pub(super) fn median(runs: usize, mut f: impl FnMut()) -> Duration {
-    f(); // warm-up
-    let mut times: Vec<Duration> = (0..runs.max(1))
-        .map(|_| {
-            let t = Instant::now();
-            f();
-            t.elapsed()
-        })
-        .collect();
-    times.sort();
-    times[times.len() / 2]
 }

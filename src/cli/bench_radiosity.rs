@@ -1,7 +1,7 @@
 //! `lumiere bench --radiosity-elements N,…`: radiosity solve times on a catalogue
 //! radiosity scene as the element count grows.
 
-use super::bench::median;
+use super::timing::median;
 use anyhow::{Result, bail};
 use lumiere::load_scene;
 use lumiere::radiosity::gathering::gather;

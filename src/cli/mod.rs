@@ -8,6 +8,7 @@ mod list;
 mod radiosity;
 mod render;
 mod shadow_polygons;
+mod timing;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};

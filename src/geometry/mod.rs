@@ -1,6 +1,8 @@
-//! Polygons and clipping, shared by every pass that works at object precision.
+//! Polygons and clipping, shared by every pass that works at object precision;
+//! the bounding volume hierarchy; Lambert's contour formula.
 
 pub mod bvh;
+pub mod lambert_contour;
 pub mod polygon;
 pub mod sutherland_hodgman;
 pub mod weiler_atherton;

@@ -1,6 +1,6 @@
 //! Form factors from Lambert's contour formula (J. H. Lambert, *Photometria*, 1760):
 //! the exact point-to-polygon factor F = Φ/π, Φ the receiver's projected solid angle
-//! above the point's tangent plane (`shading::lambert_contour`). It is the reference
+//! above the point's tangent plane (`geometry::lambert_contour`). It is the reference
 //! the hemi-cube and Nusselt estimates are measured against.
 //!
 //! Occlusion: Lambert's formula knows nothing of what lies between, so the factor is
@@ -10,7 +10,7 @@
 //! unoccluded pairs (the test configurations) and an approximation in partial shadow.
 
 use super::receivers::Receivers;
-use crate::shading::lambert_contour::form_factor;
+use crate::geometry::lambert_contour::form_factor;
 use crate::shadow::ray_cast::Occluders;
 use glam::DVec3;
 

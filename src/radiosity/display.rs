@@ -11,32 +11,12 @@
 
 use super::mesh::Mesh;
 use crate::output::Image;
-use crate::raster::{ToPrepare, prepare, rasterize};
-use crate::render::{sample_view, to_pixels};
+use crate::raster::{ToPrepare, prepare, rasterize, sample_view};
 use crate::scene::{Scene, Vertex};
 use glam::{DVec2, Vec3};
 use rayon::prelude::*;
 
-/// How element radiosities are drawn.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    clap::ValueEnum,
-    serde::Deserialize,
-    serde::Serialize,
-)]
-#[serde(rename_all = "kebab-case")]
-pub enum Display {
-    /// Vertex radiosities interpolated across each element (Gouraud 1971).
-    #[default]
-    Gouraud,
-    /// One radiosity per element.
-    Flat,
-}
+pub use crate::settings::Display;
 
 /// Per mesh vertex, the mean radiosity of the elements sharing it.
 pub fn vertex_radiosities(mesh: &Mesh, elements: &[Vec3]) -> Vec<Vec3> {
@@ -108,5 +88,10 @@ pub fn image(scene: &Scene, mesh: &Mesh, elements: &[Vec3], display: Display) ->
             if front { s.color } else { Vec3::ZERO }
         })
         .collect();
-    to_pixels(scene, &view, radiance)
+    Image {
+        width: view.width,
+        height: view.height,
+        pixels: radiance,
+    }
+    .downsample(scene.render.supersample)
 }

@@ -11,28 +11,7 @@ use crate::shadow::ray_cast::Occluders;
 use glam::DVec3;
 use rayon::prelude::*;
 
-/// How form factors are estimated.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    clap::ValueEnum,
-    serde::Deserialize,
-    serde::Serialize,
-)]
-#[serde(rename_all = "kebab-case")]
-pub enum FormFactorMethod {
-    /// Cohen & Greenberg 1985: item buffers on the five faces of a hemi-cube.
-    #[default]
-    Hemicube,
-    /// The Nusselt analog: the covered fraction of the hemisphere's base disc.
-    Nusselt,
-    /// Lambert's exact point-to-polygon factor, with an occlusion test.
-    Analytic,
-}
+pub use crate::settings::FormFactorMethod;
 
 /// A form-factor estimator ready to use.
 pub enum Estimator<'a> {

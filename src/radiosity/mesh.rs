@@ -18,14 +18,7 @@ use glam::{DVec3, Vec3};
 use std::collections::HashMap;
 use std::ops::Range;
 
-/// How finely to cut: the polygon (or patch) whole, pieces no longer than a size
-/// along each side, or a fixed number of pieces along each side.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Division {
-    Whole,
-    Size(f64),
-    Count(u32),
-}
+pub use crate::settings::Division;
 
 impl Division {
     /// Pieces along a side of length `length`.

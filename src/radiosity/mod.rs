@@ -21,58 +21,13 @@ pub mod subdivision;
 
 use crate::output::Image;
 use crate::scene::Scene;
+pub use crate::settings::{Division, RadiositySettings as Settings, Solver, Subdivision};
 use anyhow::{Result, bail};
 pub use display::Display;
 pub use form_factors::{Estimator, FormFactorMethod};
 use glam::Vec3;
-pub use mesh::{Division, Mesh};
+pub use mesh::Mesh;
 pub use shooting::{Shooting, Stop};
-pub use subdivision::Subdivision;
-
-/// Which solver.
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    Default,
-    PartialEq,
-    Eq,
-    clap::ValueEnum,
-    serde::Deserialize,
-    serde::Serialize,
-)]
-#[serde(rename_all = "kebab-case")]
-pub enum Solver {
-    /// The full system by Gauss–Seidel (Goral et al. 1984, Cohen & Greenberg 1985).
-    Gathering,
-    /// Progressive refinement (Cohen, Chen, Wallace & Greenberg 1988).
-    #[default]
-    Shooting,
-}
-
-/// A scene's `[radiosity]` settings.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Settings {
-    pub solver: Solver,
-    pub form_factors: FormFactorMethod,
-    /// Hemi-cube top-face cells per side (Nusselt: base-grid cells per side).
-    pub resolution: u32,
-    pub patches: Division,
-    pub elements: Division,
-    /// Gathering: Gauss–Seidel stops when no radiosity changes by more than this
-    /// fraction of the largest.
-    pub tolerance: f64,
-    /// Shooting: stop when the unshot power is this fraction of the emitted power.
-    pub unshot: f64,
-    pub max_steps: usize,
-    /// Shooting: display with the ambient term.
-    pub ambient: bool,
-    pub display: Display,
-    /// Gathering: the most memory its stored form factors may take, in bytes.
-    pub memory_budget: u64,
-    /// Gathering: adaptive subdivision of the elements after the solve.
-    pub subdivision: Option<Subdivision>,
-}
 
 /// A solved scene: its mesh and the radiosity to display for every element.
 pub struct Solution {

@@ -19,13 +19,7 @@ use super::receivers::Receivers;
 use glam::DVec3;
 use rayon::prelude::*;
 
-/// When to cut: a neighbour difference above `threshold` times the largest reflected
-/// radiosity, for at most `levels` rounds.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Subdivision {
-    pub threshold: f64,
-    pub levels: u32,
-}
+pub use crate::settings::Subdivision;
 
 /// A refined solution: the mesh, every element's radiosity, and how many elements
 /// each round cut.

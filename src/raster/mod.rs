@@ -14,6 +14,7 @@
 //! every sample on it exactly once.
 
 mod edge_table;
+mod frame;
 mod project;
 mod view;
 mod visible_surface;
@@ -21,6 +22,7 @@ mod watkins;
 pub mod zbuffer;
 
 pub use edge_table::{EdgeTable, FIXED_ONE};
+pub use frame::{sample_view, screen_polygons};
 pub use project::{
     ATTRIBUTES, Attributes, DepthPlane, RasterVertex, ScreenPolygon, ScreenVertex, ToPrepare, UV,
     UvGradient, prepare,

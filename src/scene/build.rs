@@ -30,6 +30,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         exposure: file.render.exposure as f32,
         supersample: file.render.supersample,
         background: validate::colour("render.background", file.render.background)?,
+        band_rows: file.render.band_rows,
     };
     ensure!(
         file.render.exposure.is_finite() && file.render.exposure > 0.0,
@@ -51,7 +52,13 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         "shadows.pcf must be an odd kernel size from 1 to 15, got {}",
         s.pcf
     );
+    ensure!(
+        (1..=64).contains(&s.light_samples),
+        "shadows.light_samples must be between 1 and 64 (N x N samples per extended light), got {}",
+        s.light_samples
+    );
     let shadows = ShadowSettings {
+        light_samples: s.light_samples,
         method: s.method,
         map_resolution: s.map_resolution,
         map_bias: s.map_bias,

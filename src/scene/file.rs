@@ -32,9 +32,9 @@ pub struct SceneFile {
 #[serde(deny_unknown_fields)]
 pub struct RadiosityFile {
     #[serde(default)]
-    pub solver: crate::radiosity::Solver,
+    pub solver: crate::settings::Solver,
     #[serde(default)]
-    pub form_factors: crate::radiosity::FormFactorMethod,
+    pub form_factors: crate::settings::FormFactorMethod,
     #[serde(default = "hemicube_resolution")]
     pub resolution: u32,
     /// Longest patch side, in scene units (absent: each polygon is one patch).
@@ -50,7 +50,7 @@ pub struct RadiosityFile {
     #[serde(default)]
     pub ambient: bool,
     #[serde(default)]
-    pub display: crate::radiosity::Display,
+    pub display: crate::settings::Display,
     #[serde(default = "max_memory_mb")]
     pub max_memory_mb: u64,
     /// Gathering: cut elements differing from a neighbour by more than this
@@ -84,7 +84,7 @@ fn subdivision_levels() -> u32 {
 #[serde(deny_unknown_fields)]
 pub struct ShadowsFile {
     #[serde(default)]
-    pub method: crate::shadow::ShadowMethod,
+    pub method: crate::settings::ShadowMethod,
     /// Shadow map: texels along each side of each cube face.
     #[serde(default = "map_resolution")]
     pub map_resolution: u32,
@@ -98,6 +98,9 @@ pub struct ShadowsFile {
     /// image) instead of a lookup in the light model.
     #[serde(default)]
     pub post_pass: bool,
+    /// Ray casting under an extended light: N × N stratified samples over it.
+    #[serde(default = "light_samples")]
+    pub light_samples: u32,
 }
 
 impl Default for ShadowsFile {
@@ -108,6 +111,7 @@ impl Default for ShadowsFile {
             map_bias: map_bias(),
             pcf: pcf(),
             post_pass: false,
+            light_samples: light_samples(),
         }
     }
 }
@@ -120,6 +124,9 @@ fn map_bias() -> f64 {
 }
 fn pcf() -> u32 {
     1
+}
+fn light_samples() -> u32 {
+    4
 }
 
 #[derive(Debug, Deserialize)]
@@ -150,6 +157,9 @@ pub struct RenderFile {
     pub supersample: u32,
     #[serde(default)]
     pub background: Vec3File,
+    /// Pixel rows per band of the frame; 0 chooses them from a memory budget.
+    #[serde(default)]
+    pub band_rows: u32,
 }
 
 impl Default for RenderFile {
@@ -159,6 +169,7 @@ impl Default for RenderFile {
             exposure: one(),
             supersample: one_sample(),
             background: [0.0; 3],
+            band_rows: 0,
         }
     }
 }

@@ -24,6 +24,8 @@ use crate::texture::{Interpolation, Texture};
 use glam::{DMat4, DVec2, DVec3, Vec3};
 use std::sync::Arc;
 
+pub use crate::settings::{RenderSettings, ShadingMode, ShadowSettings};
+
 /// A camera as the scene file gives it: a pinhole looking from `eye` to `look_at`.
 #[derive(Clone, Debug)]
 pub struct Camera {
@@ -36,40 +38,6 @@ pub struct Camera {
     pub height: u32,
     /// Distance of the near clipping plane along the view direction.
     pub near: f64,
-}
-
-/// How a polygon's colour varies across it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ShadingMode {
-    /// One radiance per polygon, computed at its centroid with its geometric normal.
-    Flat,
-    /// Radiance computed at the vertices and interpolated (Gouraud 1971).
-    Gouraud,
-    /// Normals interpolated and the light model evaluated per pixel (Phong 1975).
-    Phong,
-}
-
-/// Settings of a render that are not geometry.
-#[derive(Clone, Debug)]
-pub struct RenderSettings {
-    pub shading: ShadingMode,
-    /// Radiance is multiplied by this before sRGB encoding (PNG output only).
-    pub exposure: f32,
-    /// Samples per pixel along each axis (N × N on a regular grid, box filtered).
-    pub supersample: u32,
-    /// Radiance of pixels where no surface is seen.
-    pub background: Vec3,
-}
-
-/// How shadows are made (`[shadows]` in the scene file).
-#[derive(Clone, Debug)]
-pub struct ShadowSettings {
-    pub method: crate::shadow::ShadowMethod,
-    pub map_resolution: u32,
-    pub map_bias: f64,
-    pub pcf: u32,
-    pub post_pass: bool,
 }
 
 /// A surface's reflectance and emission (linear RGB), and the textures on it.
@@ -228,7 +196,7 @@ pub struct Scene {
     pub render: RenderSettings,
     pub shadows: ShadowSettings,
     /// Lit by a radiosity solution (`[radiosity]`) instead of the lights.
-    pub radiosity: Option<crate::radiosity::Settings>,
+    pub radiosity: Option<crate::settings::RadiositySettings>,
     pub materials: Vec<Material>,
     pub objects: Vec<Object>,
     pub polygons: Vec<Polygon>,

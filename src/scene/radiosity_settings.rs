@@ -1,7 +1,7 @@
 //! `[radiosity]` from the file, checked.
 
 use super::file::RadiosityFile;
-use crate::radiosity::{Division, Settings, Subdivision};
+use crate::settings::{Division, RadiositySettings as Settings, Subdivision};
 use anyhow::{Result, ensure};
 
 pub fn from_file(r: &RadiosityFile) -> Result<Settings> {

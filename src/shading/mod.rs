@@ -3,7 +3,7 @@
 //! modes (flat, Gouraud, Phong) and the pass that turns a visible-surface buffer
 //! into linear radiance, with textures and bump maps (`textured`).
 
-pub mod lambert_contour;
+pub use crate::geometry::lambert_contour;
 pub mod light_model;
 mod pass;
 mod textured;

@@ -20,28 +20,7 @@ use crate::scene::{Light, Scene};
 use glam::DVec3;
 use rayon::prelude::*;
 
-/// How shadows are computed (`[shadows] method`, `--shadows`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, clap::ValueEnum)]
-#[serde(rename_all = "kebab-case")]
-pub enum ShadowMethod {
-    /// No shadows: every light reaches every point.
-    #[default]
-    None,
-    /// Appel 1968: the segment from each visible point to the light, tested against
-    /// the scene through a bounding volume hierarchy.
-    RayCast,
-    /// Bouknight & Kelley 1970: shadow polygons projected onto each receiver in a
-    /// pre-pass, span segments classified against them during scan-out.
-    Scanline,
-    /// Atherton, Weiler & Greenberg 1978: the polygons the light sees, found by
-    /// Weiler-Atherton hidden-surface removal, attached as lit detail polygons.
-    ShadowPolygons,
-    /// Williams 1978: depth images from the light, compared per visible point.
-    ShadowMap,
-    /// Crow 1977: volumes bounded by quads through the silhouette edges, counted
-    /// along each pixel's line of sight.
-    ShadowVolumes,
-}
+pub use crate::settings::ShadowMethod;
 
 /// The visibility terms of one render: per light, per sample of the visible-surface
 /// buffer. A light without a buffer is wholly visible everywhere.

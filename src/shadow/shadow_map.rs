@@ -25,8 +25,7 @@
 
 use super::cube_faces::{FACES, face_of, face_view};
 use super::per_sample;
-use crate::raster::{View, VisibleSurface, rasterize_depth};
-use crate::render::screen_polygons;
+use crate::raster::{View, VisibleSurface, rasterize_depth, screen_polygons};
 use crate::scene::Scene;
 use glam::DVec3;
 use rayon::prelude::*;

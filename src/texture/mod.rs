@@ -15,28 +15,12 @@ pub mod procedural;
 pub mod summed_area;
 pub mod texels;
 
+pub use crate::settings::Filter;
 use glam::{DVec2, Vec3};
 use mip_map::Pyramid;
 use procedural::{Procedural, luminance};
 use summed_area::SummedAreaTable;
 pub use texels::{Texels, Wrap};
-
-/// How a texture is sampled.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, clap::ValueEnum)]
-#[serde(rename_all = "kebab-case")]
-pub enum Filter {
-    /// Point sampling of the full-resolution image: the texel under the sample.
-    Nearest,
-    /// Bilinear interpolation in the full-resolution image.
-    Bilinear,
-    /// Bilinear in the mip-map level nearest the footprint's size.
-    MipNearest,
-    /// Bilinear in the two levels bracketing the footprint, blended (Williams 1983).
-    #[default]
-    Trilinear,
-    /// Mean over the footprint's bounding box by a summed-area table (Crow 1984).
-    SummedArea,
-}
 
 /// How texture coordinates are found inside a polygon (the course's two cases).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]

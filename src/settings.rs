@@ -1,0 +1,179 @@
+//! Every method's settings as plain enums and structs: what a scene file, the command
+//! line or an embedding program chooses. A leaf of the crate: it imports nothing from
+//! it, so the scene can store settings and the methods can read them without either
+//! depending on the other.
+
+/// How a polygon's colour varies across it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ShadingMode {
+    /// One radiance per polygon, computed at its centroid with its geometric normal.
+    Flat,
+    /// Radiance computed at the vertices and interpolated (Gouraud 1971).
+    Gouraud,
+    /// Normals interpolated and the light model evaluated per pixel (Phong 1975).
+    Phong,
+}
+
+/// Settings of a render that are not geometry.
+#[derive(Clone, Debug)]
+pub struct RenderSettings {
+    pub shading: ShadingMode,
+    /// Radiance is multiplied by this before sRGB encoding (PNG output only).
+    pub exposure: f32,
+    /// Samples per pixel along each axis (N × N on a regular grid, box filtered).
+    pub supersample: u32,
+    /// Radiance of pixels where no surface is seen.
+    pub background: glam::Vec3,
+    /// Pixel rows per band of the frame (0: chosen from a memory budget). The image
+    /// does not depend on it; memory grows with it.
+    pub band_rows: u32,
+}
+
+/// How shadows are computed (`[shadows] method`, `--shadows`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+pub enum ShadowMethod {
+    /// No shadows: every light reaches every point.
+    #[default]
+    None,
+    /// Appel 1968: the segment from each visible point to the light, tested against
+    /// the scene through a bounding volume hierarchy; for extended lights, stratified
+    /// samples over the emitter (Cook, Porter & Carpenter 1984).
+    RayCast,
+    /// Bouknight & Kelley 1970: shadow polygons projected onto each receiver in a
+    /// pre-pass, span segments classified against them during scan-out.
+    Scanline,
+    /// Atherton, Weiler & Greenberg 1978: the polygons the light sees, found by
+    /// Weiler-Atherton hidden-surface removal, attached as lit detail polygons.
+    ShadowPolygons,
+    /// Williams 1978: depth images from the light, compared per visible point.
+    ShadowMap,
+    /// Crow 1977: volumes bounded by quads through the silhouette edges, counted
+    /// along each pixel's line of sight.
+    ShadowVolumes,
+}
+
+impl ShadowMethod {
+    /// The name the scene file and the command line use.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadowMethod::None => "none",
+            ShadowMethod::RayCast => "ray-cast",
+            ShadowMethod::Scanline => "scanline",
+            ShadowMethod::ShadowPolygons => "shadow-polygons",
+            ShadowMethod::ShadowMap => "shadow-map",
+            ShadowMethod::ShadowVolumes => "shadow-volumes",
+        }
+    }
+}
+
+/// How shadows are made (`[shadows]` in the scene file).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShadowSettings {
+    pub method: ShadowMethod,
+    pub map_resolution: u32,
+    pub map_bias: f64,
+    pub pcf: u32,
+    pub post_pass: bool,
+    /// Ray casting under an extended light: N × N stratified samples over the emitter.
+    pub light_samples: u32,
+}
+
+/// How a texture is sampled.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+pub enum Filter {
+    /// Point sampling of the full-resolution image: the texel under the sample.
+    Nearest,
+    /// Bilinear interpolation in the full-resolution image.
+    Bilinear,
+    /// Bilinear in the mip-map level nearest the footprint's size.
+    MipNearest,
+    /// Bilinear in the two levels bracketing the footprint, blended (Williams 1983).
+    #[default]
+    Trilinear,
+    /// Mean over the footprint's bounding box by a summed-area table (Crow 1984).
+    SummedArea,
+}
+
+/// Which radiosity solver.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+pub enum Solver {
+    /// The full system by Gauss–Seidel (Goral et al. 1984, Cohen & Greenberg 1985).
+    Gathering,
+    /// Progressive refinement (Cohen, Chen, Wallace & Greenberg 1988).
+    #[default]
+    Shooting,
+}
+
+/// How form factors are estimated.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+pub enum FormFactorMethod {
+    /// Cohen & Greenberg 1985: item buffers on the five faces of a hemi-cube.
+    #[default]
+    Hemicube,
+    /// The Nusselt analog: the covered fraction of the hemisphere's base disc.
+    Nusselt,
+    /// Lambert's exact point-to-polygon factor, with an occlusion test.
+    Analytic,
+}
+
+/// How element radiosities are drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+pub enum Display {
+    /// Vertex radiosities interpolated across each element (Gouraud 1971).
+    #[default]
+    Gouraud,
+    /// One radiosity per element.
+    Flat,
+}
+
+/// How finely to cut: the polygon (or patch) whole, pieces no longer than a size
+/// along each side, or a fixed number of pieces along each side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Division {
+    Whole,
+    Size(f64),
+    Count(u32),
+}
+
+/// When to cut elements adaptively: a neighbour difference above `threshold` times
+/// the largest reflected radiosity, for at most `levels` rounds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Subdivision {
+    pub threshold: f64,
+    pub levels: u32,
+}
+
+/// A scene's `[radiosity]` settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RadiositySettings {
+    pub solver: Solver,
+    pub form_factors: FormFactorMethod,
+    /// Hemi-cube top-face cells per side (Nusselt: base-grid cells per side).
+    pub resolution: u32,
+    pub patches: Division,
+    pub elements: Division,
+    /// Gathering: Gauss–Seidel stops when no radiosity changes by more than this
+    /// fraction of the largest.
+    pub tolerance: f64,
+    /// Shooting: stop when the unshot power is this fraction of the emitted power.
+    pub unshot: f64,
+    pub max_steps: usize,
+    /// Shooting: display with the ambient term.
+    pub ambient: bool,
+    pub display: Display,
+    /// Gathering: the most memory its stored form factors may take, in bytes.
+    pub memory_budget: u64,
+    /// Gathering: adaptive subdivision of the elements after the solve.
+    pub subdivision: Option<Subdivision>,
+}
