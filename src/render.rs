@@ -23,6 +23,7 @@ pub fn visible_surface(scene: &Scene) -> (View, VisibleSurface) {
             .enumerate()
             .map(|(id, (p, c))| ToPrepare {
                 id: id as u32,
+                element: id as u32,
                 vertices: &p.vertices,
                 colors: c,
                 affine_uv: scene.materials[p.material].interpolation == Interpolation::Affine,

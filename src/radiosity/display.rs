@@ -66,6 +66,7 @@ pub fn image(scene: &Scene, mesh: &Mesh, elements: &[Vec3], display: Display) ->
             .enumerate()
             .map(|(id, (vertices, colors))| ToPrepare {
                 id: id as u32,
+                element: id as u32,
                 vertices,
                 colors,
                 affine_uv: false,

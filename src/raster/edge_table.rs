@@ -3,10 +3,16 @@
 //!
 //! x is kept in 32.32 fixed point so that stepping x += Δx row by row is exact: k
 //! steps land on x₀ + kΔx bit for bit, so a band of rows can start anywhere and
-//! still see the same crossings as a sweep from the top (the result does not depend
-//! on how rows are shared between threads). Depth ζ steps in floating point; the
-//! attributes over z are evaluated at the row from the edge's first row. An edge is entered with its endpoints in a canonical order, so
-//! the two polygons sharing an edge get identical crossings.
+//! still see the same crossings as a sweep from the top (the result depends neither
+//! on how the frame is cut into bands nor on how rows are shared between threads).
+//! Depth ζ and the attributes over z are evaluated at each row from the edge's first
+//! row (not stepped), for the same reason. An edge is entered with its endpoints in a
+//! canonical order, so the two polygons sharing an edge get identical crossings.
+//!
+//! The table keeps its edges in the order the polygons gave them (the tie-break of
+//! the active list's sort) and, beside them, their indices sorted by first row: a
+//! row's bucket is a range of that list, so the table's size does not grow with the
+//! frame's height.
 
 use super::ScreenPolygon;
 use super::project::{ATTRIBUTES, Attributes};
@@ -35,16 +41,19 @@ pub struct Edge {
 
 impl Edge {
     /// The edge's crossing `rows` rows below its first: exactly `rows` applications
-    /// of the increment for x, the same affine value for ζ.
+    /// of the increment for x.
     pub fn crossing(&self, rows: u32) -> Crossing {
         Crossing {
             polygon: self.polygon,
             last_row: self.last_row,
             x: self.x + rows as i64 * self.dx,
             dx: self.dx,
-            zeta: self.zeta + rows as f64 * self.dzeta,
-            dzeta: self.dzeta,
         }
+    }
+
+    /// ζ `rows` rows below the first row (evaluated, like the attributes).
+    pub fn zeta_at(&self, rows: u32) -> f64 {
+        self.zeta + rows as f64 * self.dzeta
     }
 
     /// The attributes over z `rows` rows below the first row (evaluated, not
@@ -60,28 +69,26 @@ impl Edge {
 }
 
 /// What the active edge list keeps of an edge on the current row: small, so that
-/// keeping the list sorted moves little memory. Attributes stay in the table.
+/// keeping the list sorted moves little memory. Depth and attributes stay in the
+/// table.
 #[derive(Clone, Copy, Debug)]
 pub struct Crossing {
     pub polygon: u32,
     pub last_row: u32,
     pub x: i64,
     pub dx: i64,
-    pub zeta: f64,
-    pub dzeta: f64,
 }
 
 impl Crossing {
     pub fn step(&mut self) {
         self.x += self.dx;
-        self.zeta += self.dzeta;
     }
 }
 
 pub struct EdgeTable {
     pub edges: Vec<Edge>,
-    /// `buckets[j]`: the edges whose first row is j.
-    pub buckets: Vec<Vec<u32>>,
+    /// Edge indices sorted by first row (stable): the buckets, end to end.
+    by_first_row: Vec<u32>,
 }
 
 impl EdgeTable {
@@ -129,11 +136,27 @@ impl EdgeTable {
                 });
             }
         }
-        let mut buckets = vec![Vec::new(); height as usize];
-        for (k, e) in edges.iter().enumerate() {
-            buckets[e.first_row as usize].push(k as u32);
+        let mut by_first_row: Vec<u32> = (0..edges.len() as u32).collect();
+        by_first_row.sort_by_key(|&k| edges[k as usize].first_row);
+        EdgeTable {
+            edges,
+            by_first_row,
         }
-        EdgeTable { edges, buckets }
+    }
+
+    /// The edges whose first row is `row`, in the order their polygons gave them.
+    pub fn bucket(&self, row: u32) -> &[u32] {
+        let first_row = |k: &u32| self.edges[*k as usize].first_row;
+        let start = self.by_first_row.partition_point(|k| first_row(k) < row);
+        let end = self.by_first_row.partition_point(|k| first_row(k) <= row);
+        &self.by_first_row[start..end]
+    }
+
+    /// The first and last rows any edge crosses, `None` for an empty table.
+    pub fn rows(&self) -> Option<(u32, u32)> {
+        let first = self.edges.iter().map(|e| e.first_row).min()?;
+        let last = self.edges.iter().map(|e| e.last_row).max()?;
+        Some((first, last))
     }
 }
 

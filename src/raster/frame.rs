@@ -20,6 +20,7 @@ pub fn screen_polygons(scene: &Scene, view: &View) -> Vec<ScreenPolygon> {
         view,
         scene.polygons.iter().enumerate().map(|(id, p)| ToPrepare {
             id: id as u32,
+            element: id as u32,
             vertices: &p.vertices,
             colors: &[],
             affine_uv: false,

@@ -142,6 +142,8 @@ impl UvGradient {
 #[derive(Clone, Debug)]
 pub struct ScreenPolygon {
     pub id: u32,
+    /// The drawn piece's id (the polygon's own, or a radiosity element's).
+    pub element: u32,
     pub vertices: Vec<ScreenVertex>,
     pub plane: DepthPlane,
     /// Texture coordinates are stepped affinely in screen space (not divided by z).
@@ -192,6 +194,7 @@ impl ScreenPolygon {
         let plane = DepthPlane::through(&vertices, |v| v.zeta)?;
         Some(ScreenPolygon {
             id,
+            element: id,
             vertices,
             plane,
             affine_uv: false,
@@ -231,6 +234,8 @@ impl ScreenPolygon {
 /// whether its texture coordinates are interpolated affinely.
 pub struct ToPrepare<'a> {
     pub id: u32,
+    /// The piece's own id (`id` unless the polygon is drawn in pieces).
+    pub element: u32,
     pub vertices: &'a [Vertex],
     pub colors: &'a [Vec3],
     pub affine_uv: bool,
@@ -245,6 +250,7 @@ pub fn prepare<'a>(
         .filter_map(|p| {
             let ToPrepare {
                 id,
+                element,
                 vertices,
                 colors,
                 affine_uv,
@@ -256,7 +262,8 @@ pub fn prepare<'a>(
                     RasterVertex::new(view, v, colors.get(k).copied().unwrap_or_default())
                 })
                 .collect();
-            let screen = ScreenPolygon::new(view, id, eye)?;
+            let mut screen = ScreenPolygon::new(view, id, eye)?;
+            screen.element = element;
             Some(if affine_uv {
                 screen.with_affine_uv()
             } else {

@@ -14,94 +14,143 @@
 //!
 //! Choices left open: depths are compared at sample centres, not at the span's real
 //! ends (the samples are what is displayed, and it makes the result equal a z-buffer
-//! sample for sample); equal depths go to the polygon given first. Rows are swept in
-//! fixed bands of `BAND_ROWS` on parallel threads; a band's AEL starts from the edge
-//! table exactly as a full sweep would have it (see `edge_table`).
+//! sample for sample); equal depths go to the polygon given first. A frame is swept in
+//! bands of rows (the caller's, for memory) and each band in groups of `BAND_ROWS`
+//! on parallel threads; a group's AEL starts from the edge table exactly as a full
+//! sweep would have it (see `edge_table`), so no result depends on the cut.
 
 use super::edge_table::{Crossing, EdgeTable, FIXED_ONE, first_pixel_at_or_after};
+use super::project::UvGradient;
 use super::project::{ATTRIBUTES, Attributes, UV};
 use super::{NO_POLYGON, Sample, ScreenPolygon, VisibleSurface};
 use glam::{DVec2, DVec3, Vec3};
 use rayon::prelude::*;
+use std::ops::Range;
+use std::sync::Arc;
 
 const BAND_ROWS: u32 = 8;
 
 /// The visible surface at every sample of a `width × height` grid.
 pub fn rasterize(polygons: &[ScreenPolygon], width: u32, height: u32) -> VisibleSurface {
-    let samples = sweep::<_, _, true>(polygons, width, height, Sample::EMPTY, |p, depth, a, z| {
-        // Affine texture coordinates are stepped as they are, not over z.
-        let uv_z = if p.affine_uv { 1.0 } else { z };
-        Sample {
-            polygon: p.id,
-            depth,
-            position: DVec3::new(a[0], a[1], a[2]) * z,
-            normal: DVec3::new(a[3], a[4], a[5]).normalize_or_zero().as_vec3(),
-            uv: DVec2::new(a[UV] * uv_z, a[UV + 1] * uv_z),
-            color: Vec3::new((a[8] * z) as f32, (a[9] * z) as f32, (a[10] * z) as f32),
-        }
-    });
-    let mut uv_gradients = Vec::new();
-    for p in polygons {
-        let id = p.id as usize;
-        if uv_gradients.len() <= id {
-            uv_gradients.resize(id + 1, None);
-        }
-        uv_gradients[id] = Some(p.uv_gradient());
-    }
+    let table = EdgeTable::build(polygons, height);
+    rasterize_rows(polygons, &table, width, 0..height, uv_gradients(polygons))
+}
+
+/// The visible surface on rows `rows` of the grid whose edge table is `table`: one
+/// band of a frame. `uv_gradients` is the frame's (`uv_gradients`), shared by its
+/// bands.
+pub fn rasterize_rows(
+    polygons: &[ScreenPolygon],
+    table: &EdgeTable,
+    width: u32,
+    rows: Range<u32>,
+    uv_gradients: Arc<[Option<UvGradient>]>,
+) -> VisibleSurface {
+    let first_row = rows.start;
+    let height = rows.len() as u32;
+    let samples = sweep::<_, _, true>(
+        polygons,
+        table,
+        width,
+        rows,
+        Sample::EMPTY,
+        |p, depth, a, z| {
+            // Affine texture coordinates are stepped as they are, not over z.
+            let uv_z = if p.affine_uv { 1.0 } else { z };
+            Sample {
+                polygon: p.id,
+                element: p.element,
+                depth,
+                position: DVec3::new(a[0], a[1], a[2]) * z,
+                normal: DVec3::new(a[3], a[4], a[5]).normalize_or_zero().as_vec3(),
+                uv: DVec2::new(a[UV] * uv_z, a[UV + 1] * uv_z),
+                color: Vec3::new((a[8] * z) as f32, (a[9] * z) as f32, (a[10] * z) as f32),
+            }
+        },
+    );
     VisibleSurface {
         width,
         height,
+        first_row,
         samples,
         uv_gradients,
     }
 }
 
+/// Per polygon id, how its texture coordinates vary across the screen (`None` for
+/// ids not among `polygons`).
+pub fn uv_gradients(polygons: &[ScreenPolygon]) -> Arc<[Option<UvGradient>]> {
+    let mut gradients = Vec::new();
+    for p in polygons {
+        let id = p.id as usize;
+        if gradients.len() <= id {
+            gradients.resize(id + 1, None);
+        }
+        gradients[id] = Some(p.uv_gradient());
+    }
+    gradients.into()
+}
+
 /// The depth (eye distance along the view axis) of the nearest polygon at every
 /// sample, infinity where none: the image a depth-buffer pass would hold.
 pub fn rasterize_depth(polygons: &[ScreenPolygon], width: u32, height: u32) -> Vec<f32> {
-    sweep::<_, _, false>(polygons, width, height, f32::INFINITY, |_, depth, _, _| {
-        depth as f32
-    })
+    let table = EdgeTable::build(polygons, height);
+    sweep::<_, _, false>(
+        polygons,
+        &table,
+        width,
+        0..height,
+        f32::INFINITY,
+        |_, depth, _, _| depth as f32,
+    )
 }
 
 /// The id of the nearest polygon at every sample, `NO_POLYGON` where none: an item
 /// buffer (Weghorst, Hooper & Greenberg 1984), as the hemicube uses it.
 pub fn rasterize_ids(polygons: &[ScreenPolygon], width: u32, height: u32) -> Vec<u32> {
-    sweep::<_, _, false>(polygons, width, height, NO_POLYGON, |p, _, _, _| p.id)
+    let table = EdgeTable::build(polygons, height);
+    sweep::<_, _, false>(
+        polygons,
+        &table,
+        width,
+        0..height,
+        NO_POLYGON,
+        |p, _, _, _| p.id,
+    )
 }
 
-/// The sweep, writing `write(polygon, depth, attributes over z, z)` at each sample where
-/// a polygon is visible and `empty` elsewhere; with `ATTRIBUTES_USED` false the
-/// attributes are not stepped (a depth-only pass).
+/// The sweep of rows `rows`, writing `write(polygon, depth, attributes over z, z)` at
+/// each sample where a polygon is visible and `empty` elsewhere; with
+/// `ATTRIBUTES_USED` false the attributes are not stepped (a depth-only pass).
 fn sweep<S: Copy + Send + Sync, W, const ATTRIBUTES_USED: bool>(
     polygons: &[ScreenPolygon],
+    table: &EdgeTable,
     width: u32,
-    height: u32,
+    rows: Range<u32>,
     empty: S,
     write: W,
 ) -> Vec<S>
 where
     W: Fn(&ScreenPolygon, f64, &Attributes, f64) -> S + Sync,
 {
-    let table = EdgeTable::build(polygons, height);
     // Filled in parallel: the first touch of a large buffer costs as much as the sweep.
-    let mut samples: Vec<S> = (0..width as usize * height as usize)
+    let mut samples: Vec<S> = (0..width as usize * rows.len())
         .into_par_iter()
         .map(|_| empty)
         .collect();
     samples
         .par_chunks_mut((width * BAND_ROWS) as usize)
         .enumerate()
-        .for_each(|(band, rows)| {
-            let mut sweep = Sweep::starting_at(&table, band as u32 * BAND_ROWS);
-            for row in rows.chunks_mut(width as usize) {
+        .for_each(|(group, group_rows)| {
+            let mut sweep = Sweep::starting_at(table, rows.start + group as u32 * BAND_ROWS);
+            for row in group_rows.chunks_mut(width as usize) {
                 let y = sweep.row as f64 + 0.5;
                 let row_index = sweep.row;
                 sweep.for_each_span(width, |i0, i1, inside, active| {
                     let span = Span {
                         y,
                         active,
-                        table: &table,
+                        table,
                         row: row_index,
                         polygons,
                         write: &write,
@@ -146,22 +195,48 @@ pub fn covered_spans(
     polygons: &[ScreenPolygon],
     width: u32,
     height: u32,
+    f: impl FnMut(u32, u32, u32),
+) {
+    covered_spans_in(polygons, width, 0..height, f)
+}
+
+/// As `covered_spans`, on rows `rows` only (one band of a frame).
+pub fn covered_spans_in(
+    polygons: &[ScreenPolygon],
+    width: u32,
+    rows: Range<u32>,
     mut f: impl FnMut(u32, u32, u32),
 ) {
-    let table = EdgeTable::build(polygons, height);
-    let Some(first) = table.edges.iter().map(|e| e.first_row).min() else {
+    let table = EdgeTable::build(polygons, rows.end);
+    spans_inside(&table, width, rows, |row, i0, i1, _| f(row, i0, i1));
+}
+
+/// Calls `f(row, first, last, inside)` for every span of rows `rows` lying inside at
+/// least one polygon of `table`, with the indices (in the list the table was built
+/// from) of the polygons covering it: the scan-line pass's own view of a span, for
+/// methods that count what covers a sample (Crow's shadow volumes).
+pub fn spans_inside(
+    table: &EdgeTable,
+    width: u32,
+    rows: Range<u32>,
+    mut f: impl FnMut(u32, u32, u32, &[u32]),
+) {
+    let Some((first, last)) = table.rows() else {
         return;
     };
-    let last = table
-        .edges
-        .iter()
-        .map(|e| e.last_row)
-        .max()
-        .unwrap_or(first);
-    let mut sweep = Sweep::starting_at(&table, first);
+    let (first, last) = (first.max(rows.start), last.min(rows.end.saturating_sub(1)));
+    if first > last {
+        return;
+    }
+    let mut sweep = Sweep::starting_at(table, first);
+    let mut ids = Vec::new();
     for _ in first..=last {
         let row = sweep.row;
-        sweep.for_each_span(width, |i0, i1, _, _| f(row, i0 as u32, i1 as u32));
+        sweep.for_each_span(width, |i0, i1, inside, _| {
+            ids.clear();
+            ids.extend(inside.iter().map(|c| c.polygon));
+            f(row, i0 as u32, i1 as u32, &ids)
+        });
         sweep.next_row();
     }
 }
@@ -204,14 +279,10 @@ impl<'a> Sweep<'a> {
         // insertion sort is linear there. The entering edges are sorted on their
         // own and merged in, rather than inserted one by one.
         insertion_sort(&mut self.active);
-        let Some(bucket) = self
-            .table
-            .buckets
-            .get(row as usize)
-            .filter(|b| !b.is_empty())
-        else {
+        let bucket = self.table.bucket(row);
+        if bucket.is_empty() {
             return;
-        };
+        }
         let mut entering: Vec<(u32, Crossing)> = bucket
             .iter()
             .map(|&k| (k, self.table.edges[k as usize].crossing(0)))
@@ -368,9 +439,14 @@ fn fill_run<S, W: Fn(&ScreenPolygon, f64, &Attributes, f64) -> S, const ATTRIBUT
     row: &mut [S],
 ) {
     let (l, r) = (&span.active[c.left].1, &span.active[c.right].1);
+    let edge_of = |k: usize| &span.table.edges[span.active[k].0 as usize];
+    let (le, re) = (edge_of(c.left), edge_of(c.right));
+    let (l_zeta, r_zeta) = (
+        le.zeta_at(span.row - le.first_row),
+        re.zeta_at(span.row - re.first_row),
+    );
     let attributes_of = |k: usize| {
-        let (index, _) = span.active[k];
-        let edge = &span.table.edges[index as usize];
+        let edge = edge_of(k);
         edge.attributes_at(span.row - edge.first_row)
     };
     let (la, ra) = if ATTRIBUTES_USED {
@@ -381,8 +457,8 @@ fn fill_run<S, W: Fn(&ScreenPolygon, f64, &Attributes, f64) -> S, const ATTRIBUT
     let (xl, xr) = (l.x as f64 / FIXED_ONE as f64, r.x as f64 / FIXED_ONE as f64);
     let per_pixel = if xr > xl { 1.0 / (xr - xl) } else { 0.0 };
     let t = (i0 as f64 + 0.5 - xl) * per_pixel;
-    let dzeta = (r.zeta - l.zeta) * per_pixel;
-    let mut zeta = l.zeta + (r.zeta - l.zeta) * t;
+    let dzeta = (r_zeta - l_zeta) * per_pixel;
+    let mut zeta = l_zeta + (r_zeta - l_zeta) * t;
     let mut a = [0.0; ATTRIBUTES];
     let mut da = [0.0; ATTRIBUTES];
     for k in 0..ATTRIBUTES {
