@@ -271,7 +271,7 @@ fn ray_cast_shadow_of_a_square_is_the_similar_triangle_square() {
     let scene = load_scene(path.to_str().unwrap(), &[]).unwrap();
     let (view, surface) = visible_surface(&scene);
     let visibility =
-        lumiere::shadow::Visibility::compute(&scene, &view, &surface, scene.shadows.method);
+        lumiere::shadow::compute(&scene, &view, &surface, scene.shadows.method).unwrap();
     let half_shadow = 0.5 * s * light_height / (light_height - h);
     let ground = scene
         .objects
@@ -288,7 +288,12 @@ fn ray_cast_shadow_of_a_square_is_the_similar_triangle_square() {
             continue;
         }
         let expected = if inside < half_shadow { 0.0 } else { 1.0 };
-        assert_eq!(visibility.of(0, k), expected, "at {}", sample.position);
+        assert_eq!(
+            visibility.fraction(0, k),
+            expected,
+            "at {}",
+            sample.position
+        );
         checked += 1;
         shadowed += (expected == 0.0) as usize;
     }

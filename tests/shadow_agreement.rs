@@ -6,7 +6,7 @@ use lumiere::load_scene;
 use lumiere::raster::VisibleSurface;
 use lumiere::render::visible_surface;
 use lumiere::scene::Scene;
-use lumiere::shadow::{ShadowMethod, Visibility};
+use lumiere::shadow::ShadowMethod;
 
 /// The first light's visibility per sample of entry `id` at `w × h`, with `sets`.
 fn mask(
@@ -20,9 +20,9 @@ fn mask(
     all.extend(sets.iter().map(|s| s.to_string()));
     let scene = load_scene(id, &all).unwrap();
     let (view, surface) = visible_surface(&scene);
-    let visibility = Visibility::compute(&scene, &view, &surface, method);
+    let visibility = lumiere::shadow::compute(&scene, &view, &surface, method).unwrap();
     let values = (0..surface.samples.len())
-        .map(|k| visibility.of(0, k))
+        .map(|k| visibility.fraction(0, k))
         .collect();
     (scene, surface, values)
 }
@@ -228,7 +228,7 @@ mod edge_cases {
         METHODS
             .iter()
             .map(|&m| {
-                let v = Visibility::compute(&scene, &view, &surface, m);
+                let v = lumiere::shadow::compute(&scene, &view, &surface, m).unwrap();
                 let values = surface
                     .samples
                     .iter()
@@ -236,7 +236,7 @@ mod edge_cases {
                     .filter(|(_, s)| {
                         !s.is_empty() && scene.polygons[s.polygon as usize].object == object
                     })
-                    .map(|(k, _)| v.of(0, k))
+                    .map(|(k, _)| v.fraction(0, k))
                     .collect();
                 (m, values)
             })

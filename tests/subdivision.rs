@@ -4,7 +4,7 @@
 
 use glam::{DVec3, Vec3};
 use lumiere::load_scene;
-use lumiere::radiosity::{Division, Mesh, Settings, Solver, render, solve};
+use lumiere::radiosity::{Division, Mesh, Settings, Solver, solve};
 use lumiere::scene::{Scene, scene_from_table, tables};
 use proptest::prelude::*;
 
@@ -50,7 +50,11 @@ fn refining_where_neighbours_differ_approaches_the_fine_mesh_with_fewer_elements
         n_coarse < n_adaptive && n_adaptive < n_fine,
         "elements: coarse {n_coarse}, adaptive {n_adaptive}, fine {n_fine}"
     );
-    let image = |s: &Settings| render(&scene, s).unwrap().pixels;
+    let image = |s: &Settings| {
+        let mut scene = scene.clone();
+        scene.radiosity = Some(s.clone());
+        lumiere::render(&scene).unwrap().pixels
+    };
     let reference = image(&fine);
     let (before, after) = (
         mean_difference(&image(&coarse), &reference),

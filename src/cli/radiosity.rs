@@ -5,9 +5,11 @@
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::output::{self, Image};
-use lumiere::radiosity::{self, Settings, display};
+use lumiere::radiosity::{self, Settings, Solution};
+use lumiere::render::Renderer;
 use lumiere::scene::Scene;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
+use std::sync::Arc;
 
 /// Where and how often to write intermediate images.
 pub struct Frames {
@@ -15,13 +17,12 @@ pub struct Frames {
     pub every: usize,
 }
 
-/// Solves `scene`'s radiosity and writes the image to `output`.
-pub fn render(
-    scene: &Scene,
-    settings: &Settings,
-    out: &Path,
-    frames: Option<&Frames>,
-) -> Result<()> {
+/// Solves `scene`'s radiosity, showing progress and writing the intermediate frames
+/// asked for; the solution is handed to the renderer, which draws it like any
+/// frame.
+pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frames>) -> Result<()> {
+    let scene = renderer.scene().clone();
+    let scene = &scene;
     if let Some(f) = frames {
         std::fs::create_dir_all(&f.dir)
             .with_context(|| format!("cannot create the frames directory {}", f.dir.display()))?;
@@ -51,10 +52,18 @@ pub fn render(
             && frame_error.is_ok()
         {
             let shown = state.displayed(mesh, settings.ambient);
-            let image = display::image(scene, mesh, &shown, settings.display);
+            let snapshot = Solution {
+                mesh: mesh.clone(),
+                elements: shown,
+                display: settings.display,
+                summary: String::new(),
+            };
             let path = f.dir.join(format!("step-{:05}.png", state.steps));
-            frame_error = output::save(&image, &path, exposure);
-            animation.push(image);
+            frame_error = draw(scene, snapshot).and_then(|image| {
+                let saved = output::save(&image, &path, exposure);
+                animation.push(image);
+                saved
+            });
         }
     })?;
     frame_error?;
@@ -63,11 +72,19 @@ pub fn render(
         eprintln!("warning: {warning}");
     }
     eprintln!("{}", solution.summary);
-    let image = display::image(scene, &solution.mesh, &solution.elements, settings.display);
+    let solution = Arc::new(solution);
+    renderer.set_radiosity_solution(solution.clone());
     if let Some(f) = frames {
-        animation.push(image.clone());
+        animation.push(renderer.render()?);
         let gif = output::encode_gif(&animation, exposure, 200)?;
         output::write_atomically(&f.dir.join("convergence.gif"), &gif)?;
     }
-    output::save(&image, out, exposure)
+    Ok(())
+}
+
+/// The image of an intermediate solution.
+fn draw(scene: &Scene, solution: Solution) -> Result<Image> {
+    let mut renderer = Renderer::new(scene.clone());
+    renderer.set_radiosity_solution(Arc::new(solution));
+    renderer.render()
 }

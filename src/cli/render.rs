@@ -1,7 +1,8 @@
 //! `lumiere render`: one image of a catalogue entry or a scene file.
 
-use anyhow::Result;
+use anyhow::{Context, Result, bail};
 use lumiere::radiosity::{FormFactorMethod, Solver};
+use lumiere::render::{Renderer, available_buffers};
 use lumiere::shadow::ShadowMethod;
 use lumiere::{catalogue, load_scene, output};
 use std::path::PathBuf;
@@ -28,10 +29,14 @@ pub struct Args {
     /// Shadow method, overriding the scene's `[shadows] method`.
     #[arg(long, value_enum)]
     shadows: Option<ShadowMethod>,
-    /// Write an intermediate buffer instead of the image: `shadow` is the first
-    /// light's visibility term (white lit, black shadowed, grey partial).
-    #[arg(long, value_enum)]
-    aov: Option<Aov>,
+    /// Write an intermediate buffer instead of the image, at the sample grid's size:
+    /// `--aov list` names those this scene's frame makes (polygon ids, depth,
+    /// normals, each light's visibility, shadow-map faces, shadow-volume counts, mip
+    /// levels, hemi-cube item buffers…); `--aov all -o DIR` writes them all into DIR.
+    /// Ids and counts are colour-mapped (PNG) or their numbers (PFM, EXR); values are
+    /// linear. `shadow` is `visibility-0`.
+    #[arg(long, value_name = "NAME|list|all")]
+    aov: Option<String>,
     /// Render a catalogue entry at its golden-image test size.
     #[arg(long)]
     test_size: bool,
@@ -75,15 +80,12 @@ pub struct Args {
     sets: Vec<String>,
 }
 
-/// Intermediate buffers that can be written instead of the image.
-#[derive(Clone, Copy, Debug, clap::ValueEnum)]
-enum Aov {
-    Shadow,
-}
-
 pub fn run(args: Args) -> Result<()> {
     // Fail on a bad output name before any work is done.
-    output::Format::of(&args.output)?;
+    let aov = args.aov.as_deref();
+    if !matches!(aov, Some("all" | "list")) {
+        output::Format::of(&args.output)?;
+    }
     let mut sets = Vec::new();
     if args.test_size {
         let a = catalogue::entry(&args.scene)?.algorithm;
@@ -116,20 +118,53 @@ pub fn run(args: Args) -> Result<()> {
             );
         }
     }
-    if let Some(settings) = &scene.radiosity {
+    let exposure = scene.render.exposure;
+    let radiosity = scene.radiosity.clone();
+    let mut renderer = Renderer::new(scene);
+    if let Some(settings) = &radiosity {
         let frames = args.frames.map(|dir| super::radiosity::Frames {
             dir,
             every: args.frame_every,
         });
-        return super::radiosity::render(&scene, settings, &args.output, frames.as_ref());
+        super::radiosity::solve(&mut renderer, settings, frames.as_ref())?;
+    } else if args.frames.is_some() {
+        bail!("--frames shows radiosity shooting steps: the scene has no [radiosity] table");
     }
-    match args.aov {
-        None => output::save(
-            &lumiere::render(&scene)?,
-            &args.output,
-            scene.render.exposure,
-        ),
-        Some(Aov::Shadow) => output::save(&lumiere::render::shadow_aov(&scene), &args.output, 1.0),
+    match aov {
+        None => output::save(&renderer.render()?, &args.output, exposure),
+        Some("list") => {
+            for info in available_buffers(&renderer)? {
+                println!("{:<28} {}", info.name, info.description);
+            }
+            Ok(())
+        }
+        Some("all") => {
+            let names: Vec<String> = available_buffers(&renderer)?
+                .into_iter()
+                .map(|b| b.name)
+                .collect();
+            let rendered = renderer.render_with_buffers(&names)?;
+            let dir = &args.output;
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("cannot create the directory {}", dir.display()))?;
+            for buffer in &rendered.buffers {
+                let format = buffer.natural_format();
+                let path = dir.join(format!("{}.{}", buffer.name, format.extension()));
+                output::save(&buffer.to_image(format), &path, 1.0)?;
+            }
+            Ok(())
+        }
+        Some(name) => {
+            let name = if name == "shadow" {
+                "visibility-0"
+            } else {
+                name
+            };
+            let rendered = renderer.render_with_buffers(&[name.to_string()])?;
+            let buffer = &rendered.buffers[0];
+            let format = output::Format::of(&args.output)?;
+            output::save(&buffer.to_image(format), &args.output, 1.0)
+        }
     }
 }
 

@@ -2,11 +2,13 @@
 //! disk, chosen by extension; files are written whole or not at all.
 
 mod animation;
+mod buffer;
 mod compare;
 mod pfm;
 mod png;
 
 pub use animation::encode_gif;
+pub use buffer::{Buffer, BufferData, NO_ID};
 pub use compare::{Comparison, compare, difference_image};
 
 use anyhow::{Context, Result, bail};
@@ -60,6 +62,14 @@ pub enum Format {
 }
 
 impl Format {
+    /// The file extension it is written with.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::Png => "png",
+            Format::Pfm => "pfm",
+        }
+    }
+
     pub fn of(path: &Path) -> Result<Format> {
         match path
             .extension()

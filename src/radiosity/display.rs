@@ -10,9 +10,7 @@
 //! neighbours put on its sides, which share their values (no Gouraud cracks).
 
 use super::mesh::Mesh;
-use crate::output::Image;
-use crate::raster::{ToPrepare, prepare, rasterize, sample_view};
-use crate::scene::{Scene, Vertex};
+use crate::scene::Vertex;
 use glam::{DVec2, Vec3};
 use rayon::prelude::*;
 
@@ -29,23 +27,31 @@ pub fn vertex_radiosities(mesh: &Mesh, elements: &[Vec3]) -> Vec<Vec3> {
         .collect()
 }
 
-/// The scene's camera view of the elements with radiosities `elements`.
-pub fn image(scene: &Scene, mesh: &Mesh, elements: &[Vec3], display: Display) -> Image {
-    let view = sample_view(scene);
+/// An element ready for the scan-line pass: its polygon's id, its outline and the
+/// radiance B/π to interpolate across it.
+pub struct ElementPolygon {
+    pub polygon: usize,
+    pub vertices: Vec<Vertex>,
+    pub colors: Vec<Vec3>,
+}
+
+/// The elements with radiosities `elements`, as the scan-line pass draws them: each
+/// through its outline (with the midpoints finer neighbours put on its sides), its
+/// vertices carrying its polygon's attributes there.
+pub fn element_polygons(mesh: &Mesh, elements: &[Vec3], display: Display) -> Vec<ElementPolygon> {
     let at_vertices = vertex_radiosities(mesh, elements);
     let to_radiance = 1.0 / std::f32::consts::PI;
-    let polygons: Vec<(Vec<Vertex>, Vec<Vec3>)> = mesh
-        .elements
+    mesh.elements
         .par_iter()
         .enumerate()
         .map(|(e, element)| {
-            let normal = mesh.patches[element.patch].normal;
+            let patch = &mesh.patches[element.patch];
             let outline = mesh.outline(e);
             let vertices = outline
                 .iter()
                 .map(|&v| Vertex {
                     position: mesh.vertices[v as usize],
-                    normal,
+                    normal: patch.normal,
                     uv: DVec2::ZERO,
                 })
                 .collect();
@@ -56,43 +62,11 @@ pub fn image(scene: &Scene, mesh: &Mesh, elements: &[Vec3], display: Display) ->
                     Display::Flat => elements[e] * to_radiance,
                 })
                 .collect();
-            (vertices, colors)
-        })
-        .collect();
-    let screen = prepare(
-        &view,
-        polygons
-            .iter()
-            .enumerate()
-            .map(|(id, (vertices, colors))| ToPrepare {
-                id: id as u32,
-                element: id as u32,
+            ElementPolygon {
+                polygon: patch.polygon,
                 vertices,
                 colors,
-                affine_uv: false,
-            }),
-    );
-    let surface = rasterize(&screen, view.width, view.height);
-    let radiance = surface
-        .samples
-        .par_iter()
-        .map(|s| {
-            if s.is_empty() {
-                return scene.render.background;
             }
-            let element = &mesh.elements[s.polygon as usize];
-            let front = mesh.patches[element.patch]
-                .normal
-                .dot(view.eye - s.position)
-                > 0.0;
-            // Radiosity leaves the front only; a surface seen from behind is black.
-            if front { s.color } else { Vec3::ZERO }
         })
-        .collect();
-    Image {
-        width: view.width,
-        height: view.height,
-        pixels: radiance,
-    }
-    .downsample(scene.render.supersample)
+        .collect()
 }

@@ -26,7 +26,7 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 /// Item-buffer id of a receiver seen from behind.
-const BACK: u32 = u32::MAX - 1;
+pub const BACK: u32 = u32::MAX - 1;
 
 /// A hemi-cube of a given resolution and its delta form-factor tables.
 #[derive(Clone, Debug)]
@@ -123,6 +123,27 @@ impl Hemicube {
             }
         }
         factors
+    }
+
+    /// The item buffers of the five faces from `centre` (top face along `normal`):
+    /// the nearest receiver at every cell, `NO_POLYGON` where none and `BACK` where a
+    /// receiver is seen from behind; with each face's name and size.
+    pub fn faces(
+        &self,
+        centre: DVec3,
+        normal: DVec3,
+        receivers: &Receivers,
+        skip: &(dyn Fn(usize) -> bool + Sync),
+    ) -> Vec<(&'static str, u32, u32, Vec<u32>)> {
+        const NAMES: [&str; 5] = ["top", "side1", "side2", "side3", "side4"];
+        self.views(centre, normal)
+            .iter()
+            .zip(NAMES)
+            .map(|(view, name)| {
+                let ids = self.item_buffer(view, receivers, skip);
+                (name, view.width, view.height, ids)
+            })
+            .collect()
     }
 
     /// The nearest receiver at every cell of one face.

@@ -19,7 +19,6 @@ pub mod receivers;
 pub mod shooting;
 pub mod subdivision;
 
-use crate::output::Image;
 use crate::scene::Scene;
 pub use crate::settings::{Division, RadiositySettings as Settings, Solver, Subdivision};
 use anyhow::{Result, bail};
@@ -33,6 +32,8 @@ pub use shooting::{Shooting, Stop};
 pub struct Solution {
     pub mesh: Mesh,
     pub elements: Vec<Vec3>,
+    /// How the elements are drawn.
+    pub display: Display,
     /// What the solve did, for the terminal: steps or sweeps, unshot fraction.
     pub summary: String,
 }
@@ -90,6 +91,7 @@ pub fn solve(
                 }
             };
             Ok(Solution {
+                display: settings.display,
                 elements: elements.iter().map(|b| b.as_vec3()).collect(),
                 mesh,
                 summary,
@@ -110,21 +112,11 @@ pub fn solve(
                 100.0 * state.unshot_fraction(&mesh)
             );
             Ok(Solution {
+                display: settings.display,
                 elements: state.displayed(&mesh, settings.ambient),
                 mesh,
                 summary,
             })
         }
     }
-}
-
-/// The radiosity image of `scene` (which must have radiosity settings).
-pub fn render(scene: &Scene, settings: &Settings) -> Result<Image> {
-    let solution = solve(scene, settings, &mut |_, _| {})?;
-    Ok(display::image(
-        scene,
-        &solution.mesh,
-        &solution.elements,
-        settings.display,
-    ))
 }

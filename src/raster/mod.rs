@@ -17,6 +17,7 @@ mod edge_table;
 mod frame;
 mod project;
 mod view;
+mod visibility;
 mod visible_surface;
 mod watkins;
 pub mod zbuffer;
@@ -28,5 +29,9 @@ pub use project::{
     UvGradient, prepare,
 };
 pub use view::View;
+pub use visibility::{LightVisibility, Visibility, VisiblePart};
 pub use visible_surface::{NO_POLYGON, Sample, VisibleSurface};
-pub use watkins::{covered_samples, covered_spans, rasterize, rasterize_depth, rasterize_ids};
+pub use watkins::{
+    covered_samples, covered_spans, covered_spans_in, rasterize, rasterize_depth, rasterize_ids,
+    rasterize_rows, spans_inside, uv_gradients,
+};

@@ -76,6 +76,15 @@ pub struct DepthPlane {
 }
 
 impl DepthPlane {
+    /// `through`, or the zero plane for a polygon seen edge-on.
+    pub fn fit(vertices: &[ScreenVertex], value: impl Fn(&ScreenVertex) -> f64) -> DepthPlane {
+        DepthPlane::through(vertices, value).unwrap_or(DepthPlane {
+            a: 0.0,
+            b: 0.0,
+            c: 0.0,
+        })
+    }
+
     pub fn zeta(&self, x: f64, y: f64) -> f64 {
         self.a * x + self.b * y + self.c
     }
@@ -83,7 +92,7 @@ impl DepthPlane {
     /// Newell's plane through screen points (x, y, value): the affine function of
     /// the screen position a planar polygon's value follows; `None` when the polygon
     /// is seen edge-on (no screen area).
-    fn through(
+    pub fn through(
         vertices: &[ScreenVertex],
         value: impl Fn(&ScreenVertex) -> f64,
     ) -> Option<DepthPlane> {
@@ -214,13 +223,7 @@ impl ScreenPolygon {
 
     /// The texture coordinates' screen gradient (planar polygon: exact).
     pub fn uv_gradient(&self) -> UvGradient {
-        let fit = |k: usize| {
-            DepthPlane::through(&self.vertices, |v| v.attributes_over_z[k]).unwrap_or(DepthPlane {
-                a: 0.0,
-                b: 0.0,
-                c: 0.0,
-            })
-        };
+        let fit = |k: usize| DepthPlane::fit(&self.vertices, |v| v.attributes_over_z[k]);
         UvGradient {
             zeta: self.plane,
             u: fit(UV),

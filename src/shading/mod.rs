@@ -8,4 +8,4 @@ pub mod light_model;
 mod pass;
 mod textured;
 
-pub use pass::{shade, vertex_colors};
+pub use pass::{FrameShading, POST_PASS_SHADE, vertex_colors};

@@ -1,89 +1,259 @@
-//! The shading pass: per sample of the visible-surface buffer, the radiance towards
-//! the eye, each light's contribution weighted by its visibility term.
+//! The shading pass: per sample of a band of the visible-surface buffer, the radiance
+//! towards the eye, each light's contribution weighted by its own visibility.
 //!
 //! Surfaces are two-sided for reflection (the normal is turned towards the eye) and
 //! one-sided for emission (an emitter shows its radiance from the front only).
-//! Flat: one radiance per polygon, at its centroid with its geometric normal.
-//! Gouraud: radiance at the vertices, interpolated by the scan-line pass (the
-//! visibility term then weighs the interpolated total, since vertex radiance is not
-//! kept per light). Phong: the light model at every sample with the interpolated
+//! Flat: one radiance per polygon and light, at its centroid with its geometric
+//! normal. Gouraud: radiance at the vertices, interpolated by the scan-line pass; with
+//! several lights, each light's vertex radiance is interpolated on its own (by the
+//! same screen-space planes the scan-line pass steps) so that each is weighted by its
+//! own visibility. Phong: the light model at every sample with the interpolated
 //! normal.
+//!
+//! A light's weight at a sample is its visibility: the fraction a method found, or,
+//! for the visible part of an extended emitter, the ratio of its projected solid
+//! angle to the whole emitter's (Lambert's contour formula on what remains), which
+//! makes the diffuse irradiance exact; the specular part is scaled by the same ratio
+//! (an approximation, as the specular part of extended lights already is). Williams's
+//! post-pass (`post_pass`) darkens each light's contribution where its map finds
+//! shadow instead: weight v + (1 − v) × `POST_PASS_SHADE`, highlights included.
 
 use super::light_model::{SurfacePoint, reflected};
 use super::textured::{polygon_tangents, textured_point};
+use crate::geometry::lambert_contour::projected_solid_angle;
 use crate::geometry::polygon::centroid;
-use crate::raster::{View, VisibleSurface};
-use crate::scene::{Polygon, Scene, ShadingMode, Vertex};
-use crate::shadow::Visibility;
+use crate::raster::{
+    DepthPlane, LightVisibility, ToPrepare, View, Visibility, VisiblePart, VisibleSurface, prepare,
+};
+use crate::scene::{Light, Polygon, Scene, ShadingMode, Vertex};
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-/// Linear radiance of every sample of `surface`.
-pub fn shade(
-    scene: &Scene,
-    view: &View,
-    surface: &VisibleSurface,
-    visibility: &Visibility,
-) -> Vec<Vec3> {
-    let flat: Vec<Option<Vec3>> = scene
-        .polygons
-        .par_iter()
-        .enumerate()
-        .map(|(id, p)| {
-            (scene.shading_of(id) == ShadingMode::Flat).then(|| flat_radiance(scene, view, p))
-        })
-        .collect();
-    let tangents = polygon_tangents(scene);
-    surface
-        .samples
-        .par_iter()
-        .enumerate()
-        .map(|(k, s)| {
-            if s.is_empty() {
-                return scene.render.background;
-            }
-            let id = s.polygon as usize;
-            let polygon = &scene.polygons[id];
-            let material = &scene.materials[polygon.material];
-            let to_eye = (view.eye - s.position).normalize();
-            let front = polygon.normal.dot(to_eye) > 0.0;
-            let emitted = if front { material.emission } else { Vec3::ZERO };
-            let lit = match scene.shading_of(id) {
-                ShadingMode::Flat => flat[id].unwrap_or_default() * visibility.mean(k),
-                ShadingMode::Gouraud => s.color * visibility.mean(k),
-                ShadingMode::Phong => {
-                    let (reflectance, n) = if material.is_textured() {
-                        textured_point(scene, view.eye, surface, k, &tangents)
-                    } else {
-                        (material.reflectance(), s.normal.as_dvec3())
-                    };
-                    let point = SurfacePoint {
-                        position: s.position,
-                        normal: if front { n } else { -n },
-                        to_eye,
-                    };
-                    scene
-                        .lights
-                        .iter()
-                        .enumerate()
-                        .map(|(l, light)| {
-                            reflected(&point, &reflectance, light) * visibility.of(l, k)
-                        })
-                        .sum()
-                }
-            };
-            emitted + lit
-        })
-        .collect()
+/// In Williams's post-pass, what a shadowed pixel keeps of a light's radiance.
+pub const POST_PASS_SHADE: f32 = 0.25;
+
+/// What shading needs of one frame, computed once for all its bands.
+pub struct FrameShading<'a> {
+    scene: &'a Scene,
+    view: &'a View,
+    /// Which lights this pass adds (an integrator may light with the others itself).
+    direct: Vec<bool>,
+    /// Per flat-shaded polygon, its radiance from each light.
+    flat: Vec<Option<Vec<Vec3>>>,
+    /// Per Gouraud-shaded polygon, each light's interpolated vertex radiance
+    /// (only when several lights may be weighted differently).
+    gouraud: Vec<Option<Vec<ColourPlanes>>>,
+    tangents: Vec<Option<Vec<[DVec3; 2]>>>,
 }
 
-/// Unshadowed radiance leaving a point towards the eye, from every light.
+/// A colour interpolated across a polygon's screen image as the scan-line pass does
+/// it: each channel over z and ζ = 1/z are affine in screen space.
+#[derive(Clone, Copy, Debug)]
+struct ColourPlanes {
+    zeta: DepthPlane,
+    over_z: [DepthPlane; 3],
+}
+
+impl ColourPlanes {
+    fn at(&self, x: f64, y: f64) -> Vec3 {
+        let z = 1.0 / self.zeta.zeta(x, y);
+        Vec3::new(
+            (self.over_z[0].zeta(x, y) * z) as f32,
+            (self.over_z[1].zeta(x, y) * z) as f32,
+            (self.over_z[2].zeta(x, y) * z) as f32,
+        )
+    }
+}
+
+impl<'a> FrameShading<'a> {
+    /// `direct[l]`: whether this pass adds light l; `gouraud_per_light`: whether
+    /// Gouraud-shaded polygons interpolate each light on its own (when lights are
+    /// weighted differently, or the interpolated colour is not the lights').
+    pub fn new(
+        scene: &'a Scene,
+        view: &'a View,
+        direct: Vec<bool>,
+        gouraud_per_light: bool,
+    ) -> Self {
+        let lights = scene.lights.len();
+        let flat = scene
+            .polygons
+            .par_iter()
+            .enumerate()
+            .map(|(id, p)| {
+                (scene.shading_of(id) == ShadingMode::Flat).then(|| {
+                    let c = centroid(&p.positions().collect::<Vec<_>>());
+                    (0..lights)
+                        .map(|l| radiance_at(scene, p, c, p.normal, view.eye, l))
+                        .collect()
+                })
+            })
+            .collect();
+        let gouraud = if gouraud_per_light {
+            gouraud_planes(scene, view)
+        } else {
+            Vec::new()
+        };
+        FrameShading {
+            scene,
+            view,
+            direct,
+            flat,
+            gouraud,
+            tangents: polygon_tangents(scene),
+        }
+    }
+
+    /// The radiance of every sample of `band`: emission and every light this pass adds.
+    pub fn shade_band(&self, band: &VisibleSurface, visibility: &Visibility) -> Vec<Vec3> {
+        let scene = self.scene;
+        (0..band.samples.len())
+            .into_par_iter()
+            .map(|k| {
+                let s = &band.samples[k];
+                if s.is_empty() {
+                    return scene.render.background;
+                }
+                let material = scene.material_of(s.polygon as usize);
+                let emitted = if self.front(band, k) {
+                    material.emission
+                } else {
+                    Vec3::ZERO
+                };
+                emitted + self.lit(band, k, visibility)
+            })
+            .collect()
+    }
+
+    /// Whether sample `k` shows the front of its polygon.
+    pub fn front(&self, band: &VisibleSurface, k: usize) -> bool {
+        let s = &band.samples[k];
+        let to_eye = self.view.eye - s.position;
+        self.scene.polygons[s.polygon as usize].normal.dot(to_eye) > 0.0
+    }
+
+    /// The radiance the lights this pass adds reflect towards the eye at sample `k`,
+    /// each weighted by its visibility.
+    pub fn lit(&self, band: &VisibleSurface, k: usize, visibility: &Visibility) -> Vec3 {
+        let scene = self.scene;
+        let s = &band.samples[k];
+        let id = s.polygon as usize;
+        let weight = |l: usize| self.weight(band, k, l, visibility);
+        let lights = 0..scene.lights.len();
+        match scene.shading_of(id) {
+            ShadingMode::Flat => {
+                let flat = self.flat[id]
+                    .as_ref()
+                    .expect("flat radiance of a flat polygon");
+                lights
+                    .filter(|&l| self.direct[l])
+                    .map(|l| flat[l] * weight(l))
+                    .sum()
+            }
+            ShadingMode::Gouraud => match self.gouraud.get(id).and_then(Option::as_ref) {
+                Some(planes) => {
+                    let (x, y) = band.position_of(k);
+                    let (x, y) = (x as f64 + 0.5, y as f64 + 0.5);
+                    lights
+                        .filter(|&l| self.direct[l])
+                        .map(|l| planes[l].at(x, y) * weight(l))
+                        .sum()
+                }
+                // One light (or none shadowed): the interpolated total.
+                None => {
+                    s.color
+                        * if scene.lights.is_empty() {
+                            1.0
+                        } else {
+                            weight(0)
+                        }
+                }
+            },
+            ShadingMode::Phong => {
+                let material = scene.material_of(id);
+                let (reflectance, n) = if material.is_textured() {
+                    textured_point(scene, self.view.eye, band, k, &self.tangents)
+                } else {
+                    (material.reflectance(), s.normal.as_dvec3())
+                };
+                let to_eye = (self.view.eye - s.position).normalize();
+                let point = SurfacePoint {
+                    position: s.position,
+                    normal: if self.front(band, k) { n } else { -n },
+                    to_eye,
+                };
+                lights
+                    .filter(|&l| self.direct[l])
+                    .map(|l| reflected(&point, &reflectance, &scene.lights[l]) * weight(l))
+                    .sum()
+            }
+        }
+    }
+
+    /// What a diffuse texture multiplies the material's diffuse reflectance by at
+    /// sample `k` (`None` without one).
+    pub fn diffuse_texture_scale(&self, band: &VisibleSurface, k: usize) -> Option<Vec3> {
+        let material = self.scene.material_of(band.samples[k].polygon as usize);
+        material.diffuse_texture?;
+        let (reflectance, _) = textured_point(self.scene, self.view.eye, band, k, &self.tangents);
+        let ratio = |textured: f32, plain: f32| if plain > 0.0 { textured / plain } else { 0.0 };
+        Some(Vec3::new(
+            ratio(reflectance.diffuse.x, material.diffuse.x),
+            ratio(reflectance.diffuse.y, material.diffuse.y),
+            ratio(reflectance.diffuse.z, material.diffuse.z),
+        ))
+    }
+
+    /// Light `l`'s weight at sample `k`: its visibility, or Williams's post-pass
+    /// darkening.
+    fn weight(&self, band: &VisibleSurface, k: usize, l: usize, visibility: &Visibility) -> f32 {
+        let v = match visibility.of(l) {
+            None => return 1.0,
+            Some(LightVisibility::Fraction(f)) => f[k],
+            Some(LightVisibility::Emitter(parts)) => match &parts[k] {
+                None => 1.0,
+                Some(part) => self.visible_ratio(band, k, l, part),
+            },
+        };
+        if self.scene.shadows.post_pass {
+            v + (1.0 - v) * POST_PASS_SHADE
+        } else {
+            v
+        }
+    }
+
+    /// The share of a polygon light's projected solid angle that its visible part
+    /// keeps, seen from sample `k`.
+    fn visible_ratio(&self, band: &VisibleSurface, k: usize, l: usize, part: &VisiblePart) -> f32 {
+        let Light::Area(light) = &self.scene.lights[l] else {
+            return 1.0;
+        };
+        let s = &band.samples[k];
+        let mut n = self.scene.polygons[s.polygon as usize].normal;
+        if n.dot(light.centre - s.position) < 0.0 {
+            n = -n;
+        }
+        let whole = projected_solid_angle(s.position, n, &light.vertices);
+        if whole <= 0.0 {
+            return 0.0;
+        }
+        let seen: f64 = part
+            .contours
+            .iter()
+            .map(|(contour, sign)| sign * projected_solid_angle(s.position, n, contour))
+            .sum();
+        (seen / whole).clamp(0.0, 1.0) as f32
+    }
+}
+
+/// Unshadowed radiance leaving a point towards the eye, from light `l`.
 fn radiance_at(
     scene: &Scene,
     polygon: &Polygon,
     position: DVec3,
     normal: DVec3,
     eye: DVec3,
+    l: usize,
 ) -> Vec3 {
     let to_eye = (eye - position).normalize();
     let side = if polygon.normal.dot(to_eye) >= 0.0 {
@@ -97,21 +267,13 @@ fn radiance_at(
         to_eye,
     };
     let reflectance = scene.materials[polygon.material].reflectance();
-    scene
-        .lights
-        .iter()
-        .map(|l| reflected(&point, &reflectance, l))
-        .sum()
-}
-
-fn flat_radiance(scene: &Scene, view: &View, polygon: &Polygon) -> Vec3 {
-    let c = centroid(&polygon.positions().collect::<Vec<_>>());
-    radiance_at(scene, polygon, c, polygon.normal, view.eye)
+    reflected(&point, &reflectance, &scene.lights[l])
 }
 
 /// Per polygon, the radiance at its vertices for Gouraud-shaded polygons (empty
-/// for the others): the colours the scan-line pass interpolates.
-pub fn vertex_colors(scene: &Scene, view: &View) -> Vec<Vec<Vec3>> {
+/// for the others) from the lights `direct` selects: the colours the scan-line pass
+/// interpolates.
+pub fn vertex_colors(scene: &Scene, view: &View, direct: &[bool]) -> Vec<Vec<Vec3>> {
     scene
         .polygons
         .par_iter()
@@ -122,7 +284,49 @@ pub fn vertex_colors(scene: &Scene, view: &View) -> Vec<Vec<Vec3>> {
             }
             p.vertices
                 .iter()
-                .map(|v: &Vertex| radiance_at(scene, p, v.position, v.normal, view.eye))
+                .map(|v: &Vertex| {
+                    (0..scene.lights.len())
+                        .filter(|&l| direct[l])
+                        .map(|l| radiance_at(scene, p, v.position, v.normal, view.eye, l))
+                        .sum()
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Per Gouraud-shaded polygon in view, per light, its vertex radiance as screen
+/// planes.
+fn gouraud_planes(scene: &Scene, view: &View) -> Vec<Option<Vec<ColourPlanes>>> {
+    scene
+        .polygons
+        .par_iter()
+        .enumerate()
+        .map(|(id, p)| {
+            if scene.shading_of(id) != ShadingMode::Gouraud {
+                return None;
+            }
+            (0..scene.lights.len())
+                .map(|l| {
+                    let colors: Vec<Vec3> = p
+                        .vertices
+                        .iter()
+                        .map(|v| radiance_at(scene, p, v.position, v.normal, view.eye, l))
+                        .collect();
+                    let to_prepare = ToPrepare {
+                        id: id as u32,
+                        element: id as u32,
+                        vertices: &p.vertices,
+                        colors: &colors,
+                        affine_uv: false,
+                    };
+                    let screen = prepare(view, std::iter::once(to_prepare)).pop()?;
+                    Some(ColourPlanes {
+                        zeta: screen.plane,
+                        over_z: [8, 9, 10]
+                            .map(|a| DepthPlane::fit(&screen.vertices, |v| v.attributes_over_z[a])),
+                    })
+                })
                 .collect()
         })
         .collect()

@@ -1,94 +1,189 @@
-//! Shadows: every method answers, for one point light, how much of it reaches each
-//! visible sample (0 shadowed, 1 lit, between for partial), so shading never needs to
-//! know how shadows are made and methods can be compared sample by sample.
+//! Shadows: every method answers, for one light, how much of it reaches each visible
+//! sample (`raster::LightVisibility`: a fraction, or the visible part of an extended
+//! emitter), so shading never needs to know how shadows are made and methods can be
+//! compared sample by sample.
+//!
+//! A method works in three stages, so that a renderer can keep what does not depend
+//! on the view: `prepare` builds its view-independent pre-pass for one light (the
+//! shadow map, the shadow polygons, the volumes' quads), `LightShadows::frame` what
+//! depends on the view (projections onto the screen), and `FrameShadows::band`
+//! answers for the visible samples of one band of rows.
 //!
 //! Shared rule (Appel's "self-shadow"): a sample whose surface, on the side the eye
-//! sees, faces away from the light is shadowed by every method; the methods differ in
-//! how they find the cast shadows. Area lights are not shadowed by these hard-shadow
-//! methods.
+//! sees, faces away from a point light is shadowed by every method; the methods
+//! differ in how they find the cast shadows. A method asked for a light it cannot
+//! handle refuses it (`Unsupported`), naming both: nothing is silently unshadowed.
 
 pub mod cube_faces;
 pub mod ray_cast;
+mod receivers;
 pub mod scanline_shadows;
 pub mod shadow_map;
 pub mod shadow_polygon_areas;
 pub mod shadow_polygons;
 pub mod shadow_volumes;
 
-use crate::raster::{View, VisibleSurface};
+use crate::output::Buffer;
+use crate::raster::{LightVisibility, View, Visibility, VisibleSurface};
 use crate::scene::{Light, Scene};
+use crate::settings::ShadowSettings;
 use glam::DVec3;
 use rayon::prelude::*;
+use std::sync::Arc;
 
 pub use crate::settings::ShadowMethod;
+pub use ray_cast::{Occluders, SceneOccluders};
 
-/// The visibility terms of one render: per light, per sample of the visible-surface
-/// buffer. A light without a buffer is wholly visible everywhere.
-#[derive(Clone, Debug, Default)]
-pub struct Visibility {
-    pub per_light: Vec<Option<Vec<f32>>>,
+/// A shadow method asked for a light it cannot handle.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Unsupported {
+    pub method: ShadowMethod,
+    pub light: String,
 }
 
-impl Visibility {
-    /// Every light fully visible at every sample (no shadows).
-    pub fn none() -> Visibility {
-        Visibility::default()
+impl std::fmt::Display for Unsupported {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "shadow method `{}` cannot shadow {}: it is a hard-shadow method for point and spot lights; use `ray-cast` (it samples extended lights) or `none`",
+            self.method.name(),
+            self.light
+        )
     }
+}
 
-    /// The visibility of every point light by `method`.
-    pub fn compute(
-        scene: &Scene,
-        view: &View,
-        surface: &VisibleSurface,
-        method: ShadowMethod,
-    ) -> Visibility {
-        if method == ShadowMethod::None {
-            return Visibility::none();
-        }
-        let per_light = scene
-            .lights
-            .iter()
-            .map(|light| match light {
-                Light::Point(l) => {
-                    let at = l.position;
-                    Some(match method {
-                        ShadowMethod::None => unreachable!("handled above"),
-                        ShadowMethod::RayCast => ray_cast::visibility(scene, view, surface, at),
-                        ShadowMethod::Scanline => {
-                            scanline_shadows::visibility(scene, view, surface, at)
-                        }
-                        ShadowMethod::ShadowMap => shadow_map::visibility(scene, view, surface, at),
-                        ShadowMethod::ShadowPolygons => {
-                            shadow_polygons::visibility(scene, view, surface, at)
-                        }
-                        ShadowMethod::ShadowVolumes => {
-                            shadow_volumes::visibility(scene, view, surface, at)
-                        }
-                    })
-                }
-                Light::Area(_) => None,
-            })
-            .collect();
-        Visibility { per_light }
+impl std::error::Error for Unsupported {}
+
+/// One light's view-independent shadow pre-pass.
+pub trait LightShadows: Send + Sync {
+    /// What this light's shadows need of one view.
+    fn frame<'a>(&'a self, scene: &'a Scene, view: &'a View) -> Box<dyn FrameShadows + 'a>;
+
+    /// View-independent buffers the pre-pass made (a shadow map's faces), named
+    /// with `prefix`.
+    fn buffers(&self, _prefix: &str) -> Vec<Buffer> {
+        Vec::new()
     }
+}
 
-    /// Visibility of light `light` at sample `k`.
-    pub fn of(&self, light: usize, k: usize) -> f32 {
-        match self.per_light.get(light) {
-            Some(Some(buffer)) => buffer[k],
-            _ => 1.0,
+/// One light's shadows in one view.
+pub trait FrameShadows: Send + Sync {
+    /// The light's visibility at every sample of `band`.
+    fn band(&self, band: &VisibleSurface) -> BandShadows;
+}
+
+/// What a method found on one band: the visibility, and the shadow-volume count per
+/// sample for the methods that count.
+pub struct BandShadows {
+    pub visibility: LightVisibility,
+    pub counts: Option<Vec<i32>>,
+}
+
+impl BandShadows {
+    fn fraction(values: Vec<f32>) -> BandShadows {
+        BandShadows {
+            visibility: LightVisibility::Fraction(values),
+            counts: None,
         }
     }
+}
 
-    /// Mean visibility of all lights at sample `k` (for modes that shade per vertex
-    /// or per polygon and so cannot weigh lights one by one).
-    pub fn mean(&self, k: usize) -> f32 {
-        let count = self.per_light.len();
-        if count == 0 {
-            return 1.0;
-        }
-        (0..count).map(|l| self.of(l, k)).sum::<f32>() / count as f32
+/// Scene-wide work shared by the lights' pre-passes: the occluders' hierarchy, built
+/// on first use.
+pub trait SharedWork {
+    fn occluders(&self) -> Arc<SceneOccluders>;
+}
+
+/// Builds `method`'s pre-pass for light `index` of `scene`; `None` when the method
+/// casts no shadows.
+pub fn prepare(
+    scene: &Scene,
+    index: usize,
+    settings: &ShadowSettings,
+    shared: &dyn SharedWork,
+) -> Result<Option<Arc<dyn LightShadows>>, Unsupported> {
+    let light = &scene.lights[index];
+    let method = settings.method;
+    if method == ShadowMethod::None {
+        return Ok(None);
     }
+    let Some(at) = point_position(light) else {
+        return Err(Unsupported {
+            method,
+            light: describe(light, index),
+        });
+    };
+    Ok(Some(match method {
+        ShadowMethod::None => unreachable!("handled above"),
+        ShadowMethod::RayCast => {
+            Arc::new(ray_cast::RayCast::new(shared.occluders(), light.clone()))
+        }
+        ShadowMethod::Scanline => Arc::new(scanline_shadows::ScanlineShadows::new(scene, at, true)),
+        ShadowMethod::ShadowMap => Arc::new(shadow_map::CubeShadowMap::build(
+            scene,
+            at,
+            settings.map_resolution,
+            settings.map_bias,
+            settings.pcf,
+        )),
+        ShadowMethod::ShadowPolygons => Arc::new(shadow_polygons::ShadowPolygons::new(scene, at)),
+        ShadowMethod::ShadowVolumes => Arc::new(shadow_volumes::ShadowVolumes::new(scene, at)),
+    }))
+}
+
+/// Where a light that the hard-shadow methods handle sits: point lights (and spot
+/// lights, which are point lights with a directional intensity).
+fn point_position(light: &Light) -> Option<DVec3> {
+    match light {
+        Light::Point(l) => Some(l.position),
+        _ => None,
+    }
+}
+
+/// "light 2 (polygon)" for messages.
+pub fn describe(light: &Light, index: usize) -> String {
+    let kind = match light {
+        Light::Point(_) => "point",
+        Light::Area(_) => "polygon",
+    };
+    format!("light {index} ({kind})")
+}
+
+/// Every light's visibility on a whole visible-surface buffer by `method`, each
+/// pre-pass built afresh (for tests and one-off measurements; renders go through
+/// the renderer, which keeps pre-passes between frames).
+pub fn visibility(
+    scene: &Scene,
+    view: &View,
+    surface: &VisibleSurface,
+    settings: &ShadowSettings,
+) -> Result<Visibility, Unsupported> {
+    struct Fresh<'a>(&'a Scene);
+    impl SharedWork for Fresh<'_> {
+        fn occluders(&self) -> Arc<SceneOccluders> {
+            Arc::new(SceneOccluders::new(&self.0.polygons))
+        }
+    }
+    let mut per_light = Vec::new();
+    for index in 0..scene.lights.len() {
+        let shadows = prepare(scene, index, settings, &Fresh(scene))?;
+        per_light.push(shadows.map(|s| s.frame(scene, view).band(surface).visibility));
+    }
+    Ok(Visibility { per_light })
+}
+
+/// As `visibility`, with the scene's shadow settings but `method`.
+pub fn compute(
+    scene: &Scene,
+    view: &View,
+    surface: &VisibleSurface,
+    method: ShadowMethod,
+) -> Result<Visibility, Unsupported> {
+    let settings = ShadowSettings {
+        method,
+        ..scene.shadows.clone()
+    };
+    visibility(scene, view, surface, &settings)
 }
 
 /// Whether the sample's surface, on the side the eye sees, faces away from the light

@@ -13,11 +13,12 @@
 //! a polygon seen edge-on from the point casts no shadow. Scene key:
 //! `[shadows] method = "ray-cast"`.
 
-use super::per_sample;
+use super::{BandShadows, FrameShadows, LightShadows, per_sample};
 use crate::geometry::bvh::{Aabb, Bvh};
 use crate::raster::{View, VisibleSurface};
-use crate::scene::{Polygon, Scene};
+use crate::scene::{Light, Polygon, Scene};
 use glam::{DVec2, DVec3};
+use std::sync::Arc;
 
 /// Parametric margin at both ends of a shadow segment.
 const END_MARGIN: f64 = 1e-9;
@@ -43,6 +44,76 @@ impl<'a> Occluders<'a> {
         self.bvh.any_on_segment(from, to, |i| {
             Some(i) != receiver && segment_meets_polygon(from, to, &self.polygons[i as usize])
         })
+    }
+}
+
+/// The scene's polygons and their hierarchy, owned, so that a renderer can keep
+/// them between frames and share them between lights.
+pub struct SceneOccluders {
+    polygons: Vec<Polygon>,
+    bvh: Bvh,
+}
+
+impl SceneOccluders {
+    pub fn new(polygons: &[Polygon]) -> SceneOccluders {
+        let boxes: Vec<Aabb> = polygons.iter().map(|p| Aabb::of(p.positions())).collect();
+        SceneOccluders {
+            polygons: polygons.to_vec(),
+            bvh: Bvh::build(&boxes),
+        }
+    }
+
+    /// Whether a polygon not in `skip` meets the segment strictly between `from`
+    /// and `to`.
+    pub fn blocked(&self, from: DVec3, to: DVec3, skip: &[u32]) -> bool {
+        self.bvh.any_on_segment(from, to, |i| {
+            !skip.contains(&i) && segment_meets_polygon(from, to, &self.polygons[i as usize])
+        })
+    }
+}
+
+/// Ray casting's pre-pass for one light: the scene's hierarchy (shared by all lights)
+/// and the light.
+pub struct RayCast {
+    occluders: Arc<SceneOccluders>,
+    light: Light,
+}
+
+impl RayCast {
+    pub fn new(occluders: Arc<SceneOccluders>, light: Light) -> RayCast {
+        RayCast { occluders, light }
+    }
+}
+
+impl LightShadows for RayCast {
+    fn frame<'a>(&'a self, scene: &'a Scene, view: &'a View) -> Box<dyn FrameShadows + 'a> {
+        Box::new(RayCastFrame {
+            cast: self,
+            scene,
+            view,
+        })
+    }
+}
+
+struct RayCastFrame<'a> {
+    cast: &'a RayCast,
+    scene: &'a Scene,
+    view: &'a View,
+}
+
+impl FrameShadows for RayCastFrame<'_> {
+    fn band(&self, band: &VisibleSurface) -> BandShadows {
+        let occluders = &self.cast.occluders;
+        let fractions = match &self.cast.light {
+            Light::Point(l) => {
+                let at = l.position;
+                per_sample(self.scene, self.view, band, at, |_, polygon, position| {
+                    !occluders.blocked(position, at, &[polygon])
+                })
+            }
+            Light::Area(_) => unreachable!("refused by `prepare`"),
+        };
+        BandShadows::fraction(fractions)
     }
 }
 

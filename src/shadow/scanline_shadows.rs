@@ -24,13 +24,15 @@
 //! false` gives the same image. Shadow polygons are projected only onto receivers
 //! the eye sees somewhere: the others are never scanned out. Scene key: `[shadows] method = "scanline"`.
 
-use super::per_sample;
+use super::receivers::{ReceiverScreens, seen_in};
+use super::{BandShadows, FrameShadows, LightShadows, per_sample};
 use crate::geometry::sutherland_hodgman::clip;
-use crate::raster::{ScreenPolygon, View, VisibleSurface, covered_spans};
+use crate::raster::{LightVisibility, ScreenPolygon, View, VisibleSurface};
 use crate::scene::{Polygon, Scene};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
+use std::sync::OnceLock;
 
 /// A polygon's extent as seen from the light: a cone around `axis`.
 #[derive(Clone, Copy, Debug)]
@@ -83,68 +85,183 @@ impl Cone {
     }
 }
 
-/// The pre-pass: per receiver, its shadow polygons (world space, on its plane), for
-/// the receivers for which `wanted` holds (the others get none).
+/// The pre-pass for a point light at `light`: every polygon's cone, and per
+/// receiver its shadow polygons, projected the first time a frame shows the
+/// receiver (only receivers the eye sees are ever scanned out) and kept for later
+/// frames.
+pub struct ScanlineShadows {
+    light: DVec3,
+    prune: bool,
+    cones: Vec<Cone>,
+    lists: Vec<OnceLock<Vec<Vec<DVec3>>>>,
+}
+
+impl ScanlineShadows {
+    pub fn new(scene: &Scene, light: DVec3, prune: bool) -> ScanlineShadows {
+        ScanlineShadows {
+            light,
+            prune,
+            cones: scene.polygons.iter().map(|p| Cone::of(p, light)).collect(),
+            lists: scene.polygons.iter().map(|_| OnceLock::new()).collect(),
+        }
+    }
+
+    /// Receiver `r`'s shadow polygons (world space, on its plane).
+    pub fn shadow_polygons(&self, scene: &Scene, r: usize) -> &[Vec<DVec3>] {
+        self.lists[r].get_or_init(|| project_onto(scene, self.light, &self.cones, self.prune, r))
+    }
+}
+
+/// The shadow polygons every caster throws on receiver `r`'s plane.
+fn project_onto(
+    scene: &Scene,
+    light: DVec3,
+    cones: &[Cone],
+    prune: bool,
+    r: usize,
+) -> Vec<Vec<DVec3>> {
+    let receiver = &scene.polygons[r];
+    let origin = receiver.vertices[0].position;
+    // Signed distance to R's plane, positive on the light's side.
+    let side = receiver.normal.dot(light - origin).signum();
+    let distance = |p: DVec3| (p - origin).dot(receiver.normal) * side;
+    let light_distance = distance(light);
+    if light_distance <= 0.0 {
+        return Vec::new(); // the light is in R's plane: R is unlit anyway
+    }
+    scene
+        .polygons
+        .iter()
+        .enumerate()
+        .filter(|&(c, _)| c != r && (!prune || cones[r].overlaps(&cones[c])))
+        .filter_map(|(_, caster)| {
+            let corners: Vec<DVec3> = caster.positions().collect();
+            if !corners.iter().any(|&v| distance(v) > 0.0) {
+                return None; // nothing of C between the light and R's plane
+            }
+            let between = clip(&corners, |v| distance(*v));
+            let between = clip(&between, |v| light_distance * (1.0 - 1e-6) - distance(*v));
+            if between.len() < 3 {
+                return None;
+            }
+            Some(
+                between
+                    .iter()
+                    .map(|&v| {
+                        light + (v - light) * (light_distance / (light_distance - distance(v)))
+                    })
+                    .collect(),
+            )
+        })
+        .collect()
+}
+
+/// Per receiver, its shadow polygons (world space, on its plane), for the receivers
+/// for which `wanted` holds (the others get none).
 pub fn shadow_polygons(
     scene: &Scene,
     light: DVec3,
     prune: bool,
     wanted: impl Fn(usize) -> bool + Sync,
 ) -> Vec<Vec<Vec<DVec3>>> {
-    let cones: Vec<Cone> = scene.polygons.iter().map(|p| Cone::of(p, light)).collect();
-    scene
-        .polygons
-        .par_iter()
-        .enumerate()
-        .map(|(r, receiver)| {
-            if !wanted(r) {
-                return Vec::new();
+    let shadows = ScanlineShadows::new(scene, light, prune);
+    (0..scene.polygons.len())
+        .into_par_iter()
+        .map(|r| {
+            if wanted(r) {
+                shadows.shadow_polygons(scene, r).to_vec()
+            } else {
+                Vec::new()
             }
-            let origin = receiver.vertices[0].position;
-            // Signed distance to R's plane, positive on the light's side.
-            let side = receiver.normal.dot(light - origin).signum();
-            let distance = |p: DVec3| (p - origin).dot(receiver.normal) * side;
-            let light_distance = distance(light);
-            if light_distance <= 0.0 {
-                return Vec::new(); // the light is in R's plane: R is unlit anyway
-            }
-            scene
-                .polygons
-                .iter()
-                .enumerate()
-                .filter(|&(c, _)| c != r && (!prune || cones[r].overlaps(&cones[c])))
-                .filter_map(|(_, caster)| {
-                    let corners: Vec<DVec3> = caster.positions().collect();
-                    if !corners.iter().any(|&v| distance(v) > 0.0) {
-                        return None; // nothing of C between the light and R's plane
-                    }
-                    let between = clip(&corners, |v| distance(*v));
-                    let between = clip(&between, |v| light_distance * (1.0 - 1e-6) - distance(*v));
-                    if between.len() < 3 {
-                        return None;
-                    }
-                    Some(
-                        between
-                            .iter()
-                            .map(|&v| {
-                                light
-                                    + (v - light)
-                                        * (light_distance / (light_distance - distance(v)))
-                            })
-                            .collect(),
-                    )
-                })
-                .collect()
         })
         .collect()
 }
 
-/// The visibility of the point light at `light` for every sample.
-pub fn visibility(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3) -> Vec<f32> {
-    visibility_with(scene, view, surface, light, true)
+impl LightShadows for ScanlineShadows {
+    fn frame<'a>(&'a self, scene: &'a Scene, view: &'a View) -> Box<dyn FrameShadows + 'a> {
+        let project = move |r: usize| {
+            self.shadow_polygons(scene, r)
+                .iter()
+                .filter_map(|corners| ScreenPolygon::from_points(view, r as u32, corners))
+                .collect()
+        };
+        Box::new(ScanlineFrame {
+            shadows: self,
+            scene,
+            view,
+            screens: ReceiverScreens::new(scene.polygons.len(), view.height, project),
+        })
+    }
 }
 
-/// As `visibility`, with the sphere pruning on or off.
+struct ScanlineFrame<'a, F> {
+    shadows: &'a ScanlineShadows,
+    scene: &'a Scene,
+    view: &'a View,
+    screens: ReceiverScreens<F>,
+}
+
+impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync + Send> FrameShadows for ScanlineFrame<'_, F> {
+    fn band(&self, band: &VisibleSurface) -> BandShadows {
+        let width = band.width as usize;
+        // The visible span segments of each row: runs of one polygon.
+        let segments: Vec<Vec<(u32, u32, u32)>> = band
+            .samples
+            .par_chunks(width)
+            .map(|row| {
+                let mut runs: Vec<(u32, u32, u32)> = Vec::new();
+                for (i, s) in row.iter().enumerate() {
+                    match runs.last_mut() {
+                        Some(run) if run.0 == s.polygon && run.2 + 1 == i as u32 => {
+                            run.2 = i as u32
+                        }
+                        _ => runs.push((s.polygon, i as u32, i as u32)),
+                    }
+                }
+                runs
+            })
+            .collect();
+        let shadowed: Vec<Vec<usize>> = seen_in(band, self.scene.polygons.len())
+            .into_par_iter()
+            .map(|receiver| {
+                let mut intervals: Vec<Vec<(u32, u32)>> = vec![Vec::new(); band.height as usize];
+                self.screens.spans(receiver, band, |row, a, b| {
+                    let row = &mut intervals[(row - band.first_row) as usize];
+                    match row.last_mut() {
+                        Some(last) if last.1 + 1 >= a => last.1 = last.1.max(b),
+                        _ => row.push((a, b)),
+                    }
+                });
+                let mut dark = Vec::new();
+                for (y, row) in intervals.iter().enumerate() {
+                    if row.is_empty() {
+                        continue;
+                    }
+                    for &(_, x0, x1) in segments[y].iter().filter(|s| s.0 == receiver as u32) {
+                        classify(x0, x1, row, &mut |a, b| {
+                            dark.extend((a..=b).map(|x| y * width + x as usize))
+                        });
+                    }
+                }
+                dark
+            })
+            .collect();
+        let mut lit = vec![true; band.samples.len()];
+        for k in shadowed.into_iter().flatten() {
+            lit[k] = false;
+        }
+        BandShadows::fraction(per_sample(
+            self.scene,
+            self.view,
+            band,
+            self.shadows.light,
+            |k, _, _| lit[k],
+        ))
+    }
+}
+
+/// The visibility of the point light at `light` for every sample of `surface`, with
+/// the sphere pruning on or off.
 pub fn visibility_with(
     scene: &Scene,
     view: &View,
@@ -152,62 +269,11 @@ pub fn visibility_with(
     light: DVec3,
     prune: bool,
 ) -> Vec<f32> {
-    // Only receivers seen from the eye are scanned out, so only they need their
-    // shadow polygons.
-    let mut seen = vec![false; scene.polygons.len()];
-    for s in surface.samples.iter().filter(|s| !s.is_empty()) {
-        seen[s.polygon as usize] = true;
+    let shadows = ScanlineShadows::new(scene, light, prune);
+    match shadows.frame(scene, view).band(surface).visibility {
+        LightVisibility::Fraction(f) => f,
+        LightVisibility::Emitter(_) => unreachable!("a point light has no emitter"),
     }
-    let lists = shadow_polygons(scene, light, prune, |r| seen[r]);
-    let width = surface.width as usize;
-    // The visible span segments of each row: runs of one polygon.
-    let segments: Vec<Vec<(u32, u32, u32)>> = surface
-        .samples
-        .par_chunks(width)
-        .map(|row| {
-            let mut runs: Vec<(u32, u32, u32)> = Vec::new();
-            for (i, s) in row.iter().enumerate() {
-                match runs.last_mut() {
-                    Some(run) if run.0 == s.polygon && run.2 + 1 == i as u32 => run.2 = i as u32,
-                    _ => runs.push((s.polygon, i as u32, i as u32)),
-                }
-            }
-            runs
-        })
-        .collect();
-    let shadowed: Vec<Vec<usize>> = lists
-        .par_iter()
-        .enumerate()
-        .filter(|(_, list)| !list.is_empty())
-        .map(|(receiver, list)| {
-            let screen: Vec<ScreenPolygon> = list
-                .iter()
-                .filter_map(|corners| ScreenPolygon::from_points(view, receiver as u32, corners))
-                .collect();
-            let mut intervals: Vec<Vec<(u32, u32)>> = vec![Vec::new(); surface.height as usize];
-            covered_spans(&screen, surface.width, surface.height, |row, a, b| {
-                let row = &mut intervals[row as usize];
-                match row.last_mut() {
-                    Some(last) if last.1 + 1 >= a => last.1 = last.1.max(b),
-                    _ => row.push((a, b)),
-                }
-            });
-            let mut dark = Vec::new();
-            for (y, row) in intervals.iter().enumerate() {
-                for &(_, x0, x1) in segments[y].iter().filter(|s| s.0 == receiver as u32) {
-                    classify(x0, x1, row, &mut |a, b| {
-                        dark.extend((a..=b).map(|x| y * width + x as usize))
-                    });
-                }
-            }
-            dark
-        })
-        .collect();
-    let mut lit = vec![true; surface.samples.len()];
-    for k in shadowed.into_iter().flatten() {
-        lit[k] = false;
-    }
-    per_sample(scene, view, surface, light, |k, _, _| lit[k])
 }
 
 /// Classifies the segment [x0, x1] against the row's shadowed intervals (sorted,

@@ -24,7 +24,8 @@
 //! `[shadows] method = "shadow-map"`, `map_resolution`, `map_bias`, `pcf`, `post_pass`.
 
 use super::cube_faces::{FACES, face_of, face_view};
-use super::per_sample;
+use super::{BandShadows, FrameShadows, LightShadows, per_sample};
+use crate::output::{Buffer, BufferData};
 use crate::raster::{View, VisibleSurface, rasterize_depth, screen_polygons};
 use crate::scene::Scene;
 use glam::DVec3;
@@ -36,12 +37,19 @@ pub struct Face {
     pub depth: Vec<f32>,
 }
 
-/// The six depth images around a point light.
+/// The six depth images around a point light, and how the second pass reads them.
 pub struct CubeShadowMap {
     pub light: DVec3,
     pub resolution: u32,
     pub faces: Vec<Face>,
+    /// Depth bias, in slope-scaled texels.
+    pub bias: f64,
+    /// Percentage-closer kernel size (1: a single texel).
+    pub pcf: u32,
 }
+
+/// The faces' names in buffer names, in `FACES` order.
+pub const FACE_NAMES: [&str; 6] = ["px", "nx", "py", "ny", "pz", "nz"];
 
 /// Largest tan θ the slope-scaled bias follows.
 const MAX_SLOPE: f64 = 50.0;
@@ -50,7 +58,13 @@ impl CubeShadowMap {
     /// The first pass: depth images of the scene from `light`. The six faces are
     /// built in parallel: each face's projection and edge table are serial, and
     /// overlapping them halves the pass on two cores.
-    pub fn build(scene: &Scene, light: DVec3, resolution: u32) -> CubeShadowMap {
+    pub fn build(
+        scene: &Scene,
+        light: DVec3,
+        resolution: u32,
+        bias: f64,
+        pcf: u32,
+    ) -> CubeShadowMap {
         let faces = FACES
             .par_iter()
             .map(|&face| {
@@ -63,6 +77,8 @@ impl CubeShadowMap {
             light,
             resolution,
             faces,
+            bias,
+            pcf,
         }
     }
 
@@ -92,22 +108,55 @@ impl CubeShadowMap {
     }
 }
 
-/// The visibility of the point light at `light` for every sample.
-pub fn visibility(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3) -> Vec<f32> {
-    let s = &scene.shadows;
-    let map = CubeShadowMap::build(scene, light, s.map_resolution);
-    let lit = per_sample(scene, view, surface, light, |_, _, _| true);
-    surface
-        .samples
-        .par_iter()
-        .zip(lit)
-        .map(|(sample, self_lit)| {
-            if self_lit == 0.0 {
-                0.0
-            } else {
-                let n = scene.polygons[sample.polygon as usize].normal;
-                map.lookup(sample.position, n, s.map_bias, s.pcf)
-            }
+impl LightShadows for CubeShadowMap {
+    fn frame<'a>(&'a self, scene: &'a Scene, view: &'a View) -> Box<dyn FrameShadows + 'a> {
+        Box::new(MapFrame {
+            map: self,
+            scene,
+            view,
         })
-        .collect()
+    }
+
+    fn buffers(&self, prefix: &str) -> Vec<Buffer> {
+        self.faces
+            .iter()
+            .zip(FACE_NAMES)
+            .map(|(face, name)| Buffer {
+                name: format!("{prefix}-{name}"),
+                width: self.resolution,
+                height: self.resolution,
+                data: BufferData::Values {
+                    channels: 1,
+                    data: face.depth.clone(),
+                },
+            })
+            .collect()
+    }
+}
+
+struct MapFrame<'a> {
+    map: &'a CubeShadowMap,
+    scene: &'a Scene,
+    view: &'a View,
+}
+
+impl FrameShadows for MapFrame<'_> {
+    fn band(&self, band: &VisibleSurface) -> BandShadows {
+        let map = self.map;
+        let lit = per_sample(self.scene, self.view, band, map.light, |_, _, _| true);
+        BandShadows::fraction(
+            band.samples
+                .par_iter()
+                .zip(lit)
+                .map(|(sample, self_lit)| {
+                    if self_lit == 0.0 {
+                        0.0
+                    } else {
+                        let n = self.scene.polygons[sample.polygon as usize].normal;
+                        map.lookup(sample.position, n, map.bias, map.pcf)
+                    }
+                })
+                .collect(),
+        )
+    }
 }

@@ -28,10 +28,11 @@
 //! `[shadows] method = "shadow-polygons"`.
 
 use super::cube_faces::{FACES, face_view};
-use super::per_sample;
+use super::receivers::{ReceiverScreens, seen_in};
+use super::{BandShadows, FrameShadows, LightShadows, per_sample};
 use crate::geometry::sutherland_hodgman;
 use crate::geometry::weiler_atherton::{self, Region, area};
-use crate::raster::{DepthPlane, RasterVertex, ScreenPolygon, View, VisibleSurface, covered_spans};
+use crate::raster::{DepthPlane, RasterVertex, ScreenPolygon, View, VisibleSurface};
 use crate::scene::Scene;
 use glam::{DVec2, DVec3, Vec3};
 use rayon::prelude::*;
@@ -218,34 +219,74 @@ fn keyholed(view: &View, id: u32, detail: &DetailPolygon) -> Option<ScreenPolygo
     ScreenPolygon::from_points(view, id, &loop_points)
 }
 
-/// The visibility of the point light at `light` for every sample.
-pub fn visibility(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3) -> Vec<f32> {
-    let lit = lit_polygons(scene, light);
-    let width = surface.width as usize;
-    let marks: Vec<Vec<usize>> = lit
-        .par_iter()
-        .enumerate()
-        .filter(|(_, details)| !details.is_empty())
-        .map(|(receiver, details)| {
-            let screen: Vec<ScreenPolygon> = details
-                .iter()
-                .filter_map(|d| keyholed(view, receiver as u32, d))
-                .collect();
-            let mut covered = Vec::new();
-            covered_spans(&screen, surface.width, surface.height, |row, a, b| {
-                for x in a..=b {
-                    let k = row as usize * width + x as usize;
-                    if surface.samples[k].polygon == receiver as u32 {
-                        covered.push(k);
-                    }
-                }
-            });
-            covered
-        })
-        .collect();
-    let mut lit_sample = vec![false; surface.samples.len()];
-    for k in marks.into_iter().flatten() {
-        lit_sample[k] = true;
+/// The pre-pass for a point light: every polygon's lit detail polygons.
+pub struct ShadowPolygons {
+    light: DVec3,
+    lit: Vec<Vec<DetailPolygon>>,
+}
+
+impl ShadowPolygons {
+    pub fn new(scene: &Scene, light: DVec3) -> ShadowPolygons {
+        ShadowPolygons {
+            light,
+            lit: lit_polygons(scene, light),
+        }
     }
-    per_sample(scene, view, surface, light, |k, _, _| lit_sample[k])
+}
+
+impl LightShadows for ShadowPolygons {
+    fn frame<'a>(&'a self, scene: &'a Scene, view: &'a View) -> Box<dyn FrameShadows + 'a> {
+        let project = move |r: usize| {
+            self.lit[r]
+                .iter()
+                .filter_map(|d| keyholed(view, r as u32, d))
+                .collect()
+        };
+        Box::new(DetailFrame {
+            shadows: self,
+            scene,
+            view,
+            screens: ReceiverScreens::new(scene.polygons.len(), view.height, project),
+        })
+    }
+}
+
+struct DetailFrame<'a, F> {
+    shadows: &'a ShadowPolygons,
+    scene: &'a Scene,
+    view: &'a View,
+    screens: ReceiverScreens<F>,
+}
+
+impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync + Send> FrameShadows for DetailFrame<'_, F> {
+    fn band(&self, band: &VisibleSurface) -> BandShadows {
+        let width = band.width as usize;
+        let marks: Vec<Vec<usize>> = seen_in(band, self.scene.polygons.len())
+            .into_par_iter()
+            .filter(|&r| !self.shadows.lit[r].is_empty())
+            .map(|receiver| {
+                let mut covered = Vec::new();
+                self.screens.spans(receiver, band, |row, a, b| {
+                    for x in a..=b {
+                        let k = (row - band.first_row) as usize * width + x as usize;
+                        if band.samples[k].polygon == receiver as u32 {
+                            covered.push(k);
+                        }
+                    }
+                });
+                covered
+            })
+            .collect();
+        let mut lit_sample = vec![false; band.samples.len()];
+        for k in marks.into_iter().flatten() {
+            lit_sample[k] = true;
+        }
+        BandShadows::fraction(per_sample(
+            self.scene,
+            self.view,
+            band,
+            self.shadows.light,
+            |k, _, _| lit_sample[k],
+        ))
+    }
 }

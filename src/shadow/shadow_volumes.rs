@@ -25,11 +25,13 @@
 //! it is nearer than the visible surface by a relative 1e-9 (the quads start on the
 //! occluders' own edges). Scene key: `[shadows] method = "shadow-volumes"`.
 
-use super::per_sample;
 use super::ray_cast::segment_meets_polygon;
+use super::{BandShadows, FrameShadows, LightShadows, per_sample};
 use crate::geometry::bvh::Aabb;
 use crate::geometry::polygon::{centroid, newell_normal};
-use crate::raster::{ScreenPolygon, View, VisibleSurface, covered_samples};
+use crate::raster::{
+    EdgeTable, LightVisibility, ScreenPolygon, View, VisibleSurface, spans_inside,
+};
 use crate::scene::Scene;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -113,40 +115,103 @@ pub fn shadow_quads(scene: &Scene, light: DVec3) -> Vec<ShadowQuad> {
     quads
 }
 
+/// The pre-pass for a point light: the quads of every object's silhouette.
+pub struct ShadowVolumes {
+    light: DVec3,
+    quads: Vec<ShadowQuad>,
+}
+
+impl ShadowVolumes {
+    pub fn new(scene: &Scene, light: DVec3) -> ShadowVolumes {
+        ShadowVolumes {
+            light,
+            quads: shadow_quads(scene, light),
+        }
+    }
+}
+
+impl LightShadows for ShadowVolumes {
+    fn frame<'a>(&'a self, scene: &'a Scene, view: &'a View) -> Box<dyn FrameShadows + 'a> {
+        let mut screens = Vec::new();
+        let mut steps = Vec::new();
+        for quad in &self.quads {
+            // Facing the eye: entering a volume; facing away: leaving it.
+            let facing = quad.outward.dot(view.eye - quad.corners[0]);
+            if let Some(screen) = ScreenPolygon::from_points(view, 0, &quad.corners) {
+                screens.push(screen);
+                steps.push(if facing > 0.0 { 1 } else { -1 });
+            }
+        }
+        Box::new(VolumesFrame {
+            light: self.light,
+            scene,
+            view,
+            table: EdgeTable::build(&screens, view.height),
+            screens,
+            steps,
+            start: eye_count(scene, view.eye, self.light),
+        })
+    }
+}
+
+struct VolumesFrame<'a> {
+    light: DVec3,
+    scene: &'a Scene,
+    view: &'a View,
+    screens: Vec<ScreenPolygon>,
+    table: EdgeTable,
+    /// Per screen quad, +1 entering a volume, −1 leaving it.
+    steps: Vec<i32>,
+    /// The number of volumes containing the eye.
+    start: i32,
+}
+
+/// Rows counted by one task.
+const GROUP_ROWS: usize = 8;
+
+impl FrameShadows for VolumesFrame<'_> {
+    /// Crow's count along each pixel's line of sight: the scan-line sweep of the
+    /// shadow quads gives, for every span, the quads covering it; each counts at a
+    /// sample when it is nearer than the visible surface.
+    fn band(&self, band: &VisibleSurface) -> BandShadows {
+        let width = band.width as usize;
+        let mut counts = vec![self.start; band.samples.len()];
+        counts
+            .par_chunks_mut(width * GROUP_ROWS)
+            .enumerate()
+            .for_each(|(group, counts)| {
+                let first = band.first_row + (group * GROUP_ROWS) as u32;
+                let rows = first..first + (counts.len() / width) as u32;
+                spans_inside(&self.table, band.width, rows, |row, a, b, inside| {
+                    let local = (row - first) as usize * width;
+                    let band_row = (row - band.first_row) as usize * width;
+                    for &q in inside {
+                        let plane = self.screens[q as usize].plane;
+                        for x in a..=b {
+                            let sample_zeta = 1.0 / band.samples[band_row + x as usize].depth;
+                            let quad_zeta = plane.zeta(x as f64 + 0.5, row as f64 + 0.5);
+                            if quad_zeta > sample_zeta * (1.0 + 1e-9) {
+                                counts[local + x as usize] += self.steps[q as usize];
+                            }
+                        }
+                    }
+                });
+            });
+        let visibility = per_sample(self.scene, self.view, band, self.light, |k, _, _| {
+            counts[k] <= 0
+        });
+        BandShadows {
+            visibility: LightVisibility::Fraction(visibility),
+            counts: Some(counts),
+        }
+    }
+}
+
 /// Per sample, the count of shadow volumes containing the visible point.
 pub fn counts(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3) -> Vec<i32> {
-    let quads = shadow_quads(scene, light);
-    let start = eye_count(scene, view.eye, light);
-    let zeta: Vec<f64> = surface.samples.iter().map(|s| 1.0 / s.depth).collect();
-    let width = surface.width;
-    let crossings = quads
-        .par_iter()
-        .fold(
-            || vec![0i32; surface.samples.len()],
-            |mut count, quad| {
-                let facing = quad.outward.dot(view.eye - quad.corners[0]);
-                let step = if facing > 0.0 { 1 } else { -1 };
-                let Some(screen) = ScreenPolygon::from_points(view, 0, &quad.corners) else {
-                    return count;
-                };
-                for (x, y) in covered_samples(&screen, surface.width, surface.height) {
-                    let k = (y * width + x) as usize;
-                    let quad_zeta = screen.plane.zeta(x as f64 + 0.5, y as f64 + 0.5);
-                    if quad_zeta > zeta[k] * (1.0 + 1e-9) {
-                        count[k] += step;
-                    }
-                }
-                count
-            },
-        )
-        .reduce(
-            || vec![0i32; surface.samples.len()],
-            |mut a, b| {
-                a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
-                a
-            },
-        );
-    crossings.into_iter().map(|c| c + start).collect()
+    let volumes = ShadowVolumes::new(scene, light);
+    let counts = volumes.frame(scene, view).band(surface).counts;
+    counts.expect("shadow volumes count")
 }
 
 /// The number of volumes containing the eye: polygons casting a volume (facing the
@@ -166,12 +231,6 @@ fn eye_count(scene: &Scene, eye: DVec3, light: DVec3) -> i32 {
         })
         .filter(|p| segment_meets_polygon(eye, light, p))
         .count() as i32
-}
-
-/// The visibility of the point light at `light` for every sample.
-pub fn visibility(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3) -> Vec<f32> {
-    let counts = counts(scene, view, surface, light);
-    per_sample(scene, view, surface, light, |k, _, _| counts[k] <= 0)
 }
 
 /// Objects of more than one polygon that are not closed 2-manifolds (some edge not

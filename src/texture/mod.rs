@@ -85,6 +85,12 @@ impl Texture {
 
     /// The filtered colour at `uv`, for a sample whose footprint has the screen
     /// derivatives `derivatives` = [∂(u, v)/∂x, ∂(u, v)/∂y].
+    /// The mip-map level λ its filter reads for a footprint (`None` for filters
+    /// without a pyramid).
+    pub fn mip_level(&self, derivatives: [DVec2; 2]) -> Option<f64> {
+        self.pyramid.as_ref().map(|p| p.level(derivatives))
+    }
+
     pub fn color(&self, uv: DVec2, derivatives: [DVec2; 2]) -> Vec3 {
         let wrap = self.wrap;
         match (self.filter, &self.pyramid, &self.sat) {

@@ -1,0 +1,329 @@
+//! A frame's named buffers (`--aov`): what the methods computed on the way to the
+//! image, for teaching and debugging. Per-sample buffers come at the sample grid's
+//! size (the image's times the supersampling), assembled band by band; the others
+//! (shadow-map faces, hemi-cube item buffers) at their own size.
+
+use super::integrator::Integrator;
+use super::renderer::Renderer;
+use crate::output::{Buffer, BufferData, NO_ID};
+use crate::radiosity::hemicube::{BACK, Hemicube};
+use crate::radiosity::receivers::Receivers;
+use crate::raster::{NO_POLYGON, Visibility, VisibleSurface};
+use crate::shadow::LightShadows;
+use anyhow::{Result, bail};
+use std::sync::Arc;
+
+/// A buffer a scene's frame can give, and what it holds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BufferInfo {
+    pub name: String,
+    pub description: String,
+}
+
+/// A per-sample buffer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Kind {
+    Polygon,
+    Element,
+    Depth,
+    Position,
+    Normal,
+    Uv,
+    Visibility(usize),
+    Counts(usize),
+    MipLevel,
+    Radiosity,
+}
+
+impl Kind {
+    fn name(self) -> String {
+        match self {
+            Kind::Polygon => "polygon".into(),
+            Kind::Element => "element".into(),
+            Kind::Depth => "depth".into(),
+            Kind::Position => "position".into(),
+            Kind::Normal => "normal".into(),
+            Kind::Uv => "uv".into(),
+            Kind::Visibility(l) => format!("visibility-{l}"),
+            Kind::Counts(l) => format!("shadow-volume-counts-{l}"),
+            Kind::MipLevel => "mip-level".into(),
+            Kind::Radiosity => "radiosity".into(),
+        }
+    }
+
+    fn description(self) -> String {
+        match self {
+            Kind::Polygon => "id of the visible polygon per sample (colour-mapped)".into(),
+            Kind::Element => {
+                "id of the visible radiosity element per sample (colour-mapped)".into()
+            }
+            Kind::Depth => "eye distance along the view axis per sample (linear)".into(),
+            Kind::Position => "world position of the visible point (linear RGB = xyz)".into(),
+            Kind::Normal => "interpolated shading normal (linear RGB = xyz)".into(),
+            Kind::Uv => "texture coordinates (linear R = u, G = v)".into(),
+            Kind::Visibility(l) => {
+                format!("light {l}'s visibility: 1 lit, 0 shadowed, between partly lit")
+            }
+            Kind::Counts(l) => format!(
+                "shadow volumes of light {l} containing each visible point (Crow's count; colour-mapped)"
+            ),
+            Kind::MipLevel => {
+                "mip-map level λ read per sample for its diffuse texture (-1: none)".into()
+            }
+            Kind::Radiosity => "radiosity B of the visible element (linear, flat)".into(),
+        }
+    }
+
+    fn channels(self) -> usize {
+        match self {
+            Kind::Position | Kind::Normal | Kind::Uv | Kind::Radiosity => 3,
+            _ => 1,
+        }
+    }
+}
+
+/// Every buffer `renderer`'s frames can give, with the per-sample kinds first.
+fn catalogue(
+    renderer: &Renderer,
+    integrator: &Integrator,
+    shadows: &[Option<Arc<dyn LightShadows>>],
+) -> (Vec<Kind>, Vec<Buffer>) {
+    let scene = renderer.scene();
+    let mut kinds = vec![
+        Kind::Polygon,
+        Kind::Depth,
+        Kind::Position,
+        Kind::Normal,
+        Kind::Uv,
+    ];
+    if matches!(integrator, Integrator::Radiosity(_)) {
+        kinds.extend([Kind::Element, Kind::Radiosity]);
+    }
+    if scene
+        .textures
+        .iter()
+        .any(|t| t.mip_level([Default::default(); 2]).is_some())
+    {
+        kinds.push(Kind::MipLevel);
+    }
+    let mut fixed = Vec::new();
+    for (l, s) in shadows.iter().enumerate() {
+        let Some(s) = s else { continue };
+        kinds.push(Kind::Visibility(l));
+        if scene.shadows.method == crate::settings::ShadowMethod::ShadowVolumes {
+            kinds.push(Kind::Counts(l));
+        }
+        fixed.extend(s.buffers(&format!("shadow-map-{l}")));
+    }
+    if let Integrator::Radiosity(solution) = integrator {
+        fixed.extend(hemicube_buffers(renderer, &solution.mesh));
+    }
+    (kinds, fixed)
+}
+
+/// The item buffers of the hemi-cube at the first element's centre, looking at the
+/// patches (ids are patch indices): what gathering sees from there.
+fn hemicube_buffers(renderer: &Renderer, mesh: &crate::radiosity::Mesh) -> Vec<Buffer> {
+    let scene = renderer.scene();
+    let Some(settings) = &scene.radiosity else {
+        return Vec::new();
+    };
+    let Some(element) = mesh.elements.first() else {
+        return Vec::new();
+    };
+    let patch = &mesh.patches[element.patch];
+    let receivers = Receivers::patches(mesh);
+    let own = element.patch;
+    Hemicube::new(settings.resolution)
+        .faces(element.centre, patch.normal, &receivers, &|r| r == own)
+        .into_iter()
+        .map(|(face, width, height, ids)| Buffer {
+            name: format!("hemicube-{face}"),
+            width,
+            height,
+            data: BufferData::Ids(
+                ids.into_iter()
+                    .map(|i| {
+                        if i == NO_POLYGON || i == BACK {
+                            NO_ID
+                        } else {
+                            i
+                        }
+                    })
+                    .collect(),
+            ),
+        })
+        .collect()
+}
+
+/// What a fixed buffer is, for `--aov list`.
+fn fixed_description(name: &str) -> String {
+    if let Some(rest) = name.strip_prefix("shadow-map-") {
+        format!("shadow-map depth image of light and cube face {rest} (linear)")
+    } else if let Some(face) = name.strip_prefix("hemicube-") {
+        format!("hemi-cube item buffer, {face} face, at the first element (patch ids)")
+    } else {
+        String::new()
+    }
+}
+
+/// The buffers `renderer`'s frames can give.
+pub fn available_buffers(renderer: &Renderer) -> Result<Vec<BufferInfo>> {
+    let integrator = renderer.integrator()?;
+    let direct = integrator.direct_lights(renderer.scene());
+    let mut shadows = Vec::new();
+    for (l, &lit) in direct.iter().enumerate() {
+        shadows.push(if lit {
+            renderer.light_shadows(l)?
+        } else {
+            None
+        });
+    }
+    let (kinds, fixed) = catalogue(renderer, &integrator, &shadows);
+    Ok(kinds
+        .into_iter()
+        .map(|k| BufferInfo {
+            name: k.name(),
+            description: k.description(),
+        })
+        .chain(fixed.iter().map(|b| BufferInfo {
+            name: b.name.clone(),
+            description: fixed_description(&b.name),
+        }))
+        .collect())
+}
+
+/// The buffers one frame is asked for, filled band by band.
+pub(super) struct FrameBuffers {
+    width: u32,
+    height: u32,
+    kinds: Vec<(Kind, BufferData)>,
+    fixed: Vec<Buffer>,
+}
+
+impl FrameBuffers {
+    /// Refuses a name the frame cannot give, naming those it can.
+    pub fn new(
+        renderer: &Renderer,
+        integrator: &Integrator,
+        shadows: &[Option<Arc<dyn LightShadows>>],
+        wanted: &[String],
+    ) -> Result<FrameBuffers> {
+        let scene = renderer.scene();
+        let n = scene.render.supersample;
+        let mut frame = FrameBuffers {
+            width: scene.camera.width * n,
+            height: scene.camera.height * n,
+            kinds: Vec::new(),
+            fixed: Vec::new(),
+        };
+        if wanted.is_empty() {
+            return Ok(frame);
+        }
+        let (kinds, fixed) = catalogue(renderer, integrator, shadows);
+        for name in wanted {
+            if let Some(&kind) = kinds.iter().find(|k| &k.name() == name) {
+                let data = match kind {
+                    Kind::Polygon | Kind::Element => BufferData::Ids(Vec::new()),
+                    Kind::Counts(_) => BufferData::Counts(Vec::new()),
+                    _ => BufferData::Values {
+                        channels: kind.channels(),
+                        data: Vec::new(),
+                    },
+                };
+                frame.kinds.push((kind, data));
+            } else if let Some(b) = fixed.iter().find(|b| &b.name == name) {
+                frame.fixed.push(b.clone());
+            } else {
+                let names: Vec<String> = kinds
+                    .iter()
+                    .map(|k| k.name())
+                    .chain(fixed.iter().map(|b| b.name.clone()))
+                    .collect();
+                bail!(
+                    "this scene's frame has no buffer `{name}`; it has: {}",
+                    names.join(", ")
+                );
+            }
+        }
+        Ok(frame)
+    }
+
+    /// Appends one band's rows.
+    pub fn add_band(
+        &mut self,
+        band: &VisibleSurface,
+        visibility: &Visibility,
+        counts: &[Option<Vec<i32>>],
+        integrator: &Integrator,
+        scene: &crate::scene::Scene,
+    ) {
+        for (kind, data) in &mut self.kinds {
+            let samples = band.samples.iter().enumerate();
+            match (kind, data) {
+                (Kind::Polygon, BufferData::Ids(ids)) => {
+                    ids.extend(band.samples.iter().map(|s| s.polygon))
+                }
+                (Kind::Element, BufferData::Ids(ids)) => {
+                    ids.extend(band.samples.iter().map(|s| s.element))
+                }
+                (Kind::Counts(l), BufferData::Counts(c)) => match &counts[*l] {
+                    Some(found) => c.extend(found),
+                    None => c.extend(std::iter::repeat_n(0, band.samples.len())),
+                },
+                (kind, BufferData::Values { data, .. }) => {
+                    for (k, s) in samples {
+                        let empty = s.is_empty();
+                        match *kind {
+                            Kind::Depth => data.push(if empty { 0.0 } else { s.depth as f32 }),
+                            Kind::Position => data.extend(s.position.as_vec3().to_array()),
+                            Kind::Normal => data.extend(s.normal.to_array()),
+                            Kind::Uv => data.extend([s.uv.x as f32, s.uv.y as f32, 0.0]),
+                            Kind::Visibility(l) => data.push(if empty {
+                                0.0
+                            } else {
+                                visibility.fraction(l, k)
+                            }),
+                            Kind::MipLevel => data.push(mip_level(scene, band, k)),
+                            Kind::Radiosity => data.extend(match integrator {
+                                Integrator::Radiosity(solution) if !empty => {
+                                    solution.elements[s.element as usize].to_array()
+                                }
+                                _ => [0.0; 3],
+                            }),
+                            _ => unreachable!("ids and counts are matched above"),
+                        }
+                    }
+                }
+                _ => unreachable!("each kind is made with its own data"),
+            }
+        }
+    }
+
+    pub fn finish(self) -> Vec<Buffer> {
+        let (width, height) = (self.width, self.height);
+        self.kinds
+            .into_iter()
+            .map(|(kind, data)| Buffer {
+                name: kind.name(),
+                width,
+                height,
+                data,
+            })
+            .chain(self.fixed)
+            .collect()
+    }
+}
+
+/// λ read at sample `k` for its material's diffuse texture, −1 where none.
+fn mip_level(scene: &crate::scene::Scene, band: &VisibleSurface, k: usize) -> f32 {
+    let s = &band.samples[k];
+    if s.is_empty() {
+        return -1.0;
+    }
+    let material = scene.material_of(s.polygon as usize);
+    material
+        .diffuse_texture
+        .and_then(|t| scene.textures[t].mip_level(band.uv_derivatives(k)))
+        .map_or(-1.0, |l| l as f32)
+}

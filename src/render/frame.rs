@@ -1,0 +1,84 @@
+//! One frame, made in bands of rows.
+
+use super::buffers::FrameBuffers;
+use super::renderer::{Rendered, Renderer};
+use crate::output::Image;
+use crate::raster::{EdgeTable, Visibility, rasterize_rows, sample_view, uv_gradients};
+use crate::shading::FrameShading;
+use anyhow::Result;
+
+/// Samples per band when the scene does not choose its band height: about 20 MB of
+/// visible-surface buffer.
+const BAND_SAMPLES: u32 = 1 << 18;
+
+pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Rendered> {
+    let scene = renderer.scene();
+    let integrator = renderer.integrator()?;
+    let direct = integrator.direct_lights(scene);
+    let mut shadows = Vec::with_capacity(scene.lights.len());
+    for (index, &lit) in direct.iter().enumerate() {
+        shadows.push(if lit {
+            renderer.light_shadows(index)?
+        } else {
+            None
+        });
+    }
+    let mut buffers = FrameBuffers::new(renderer, &integrator, &shadows, wanted)?;
+
+    let view = sample_view(scene);
+    let polygons = integrator.draw_list(scene, &view, &direct);
+    let table = EdgeTable::build(&polygons, view.height);
+    let gradients = uv_gradients(&polygons);
+    let frames: Vec<_> = shadows
+        .iter()
+        .map(|s| s.as_ref().map(|s| s.frame(scene, &view)))
+        .collect();
+    let shadowed = frames.iter().any(Option::is_some);
+    let shading = FrameShading::new(
+        scene,
+        &view,
+        direct.clone(),
+        integrator.gouraud_per_light(scene, shadowed),
+    );
+
+    let n = scene.render.supersample;
+    let (width, height) = (scene.camera.width, scene.camera.height);
+    let band_rows = match scene.render.band_rows {
+        0 => (BAND_SAMPLES / (view.width * n)).max(1),
+        rows => rows,
+    };
+    let mut pixels = Vec::with_capacity(width as usize * height as usize);
+    for first in (0..height).step_by(band_rows as usize) {
+        let last = (first + band_rows).min(height);
+        let rows = first * n..last * n;
+        let band = rasterize_rows(&polygons, &table, view.width, rows, gradients.clone());
+        let mut counts = Vec::with_capacity(frames.len());
+        let mut visibility = Visibility::none();
+        for frame in &frames {
+            let found = frame.as_ref().map(|f| f.band(&band));
+            let (v, c) = match found {
+                Some(b) => (Some(b.visibility), b.counts),
+                None => (None, None),
+            };
+            visibility.per_light.push(v);
+            counts.push(c);
+        }
+        let radiance = integrator.shade_band(&shading, scene, &band, &visibility);
+        buffers.add_band(&band, &visibility, &counts, &integrator, scene);
+        let pixels_of_band = Image {
+            width: view.width,
+            height: band.height,
+            pixels: radiance,
+        }
+        .downsample(n);
+        pixels.extend(pixels_of_band.pixels);
+    }
+    Ok(Rendered {
+        image: Image {
+            width,
+            height,
+            pixels,
+        },
+        buffers: buffers.finish(),
+    })
+}

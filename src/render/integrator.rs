@@ -1,0 +1,130 @@
+//! The ways a frame is lit, siblings over one visible-surface pass and one shading
+//! pass (as pbrt's integrators are over one film):
+//!
+//! - `Direct`: the scan-line renderer's own lighting: every light, weighted per
+//!   sample by its visibility (shadows);
+//! - `Radiosity`: a view-independent diffuse solution (`radiosity`) drawn through
+//!   its elements, Gouraud-shaded as B/π, with textures modulating the reflected part
+//!   and the lights the solution does not hold (point, spot, distant, sphere) added
+//!   directly with their shadows.
+//!
+//! Room is kept for Whitted ray tracing and the two-pass method: an integrator
+//! says which polygons the scan-line pass draws (with which vertex colours), which
+//! lights shading adds directly, and how a band's samples become radiance.
+
+use crate::radiosity::{Solution, display};
+use crate::raster::{ScreenPolygon, ToPrepare, View, Visibility, VisibleSurface, prepare};
+use crate::scene::{Light, Scene};
+use crate::shading::{FrameShading, vertex_colors};
+use glam::Vec3;
+use rayon::prelude::*;
+use std::sync::Arc;
+
+#[derive(Clone)]
+pub enum Integrator {
+    Direct,
+    Radiosity(Arc<Solution>),
+}
+
+impl Integrator {
+    /// Its name in messages and buffer lists.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Integrator::Direct => "direct",
+            Integrator::Radiosity(_) => "radiosity",
+        }
+    }
+
+    /// Per light, whether shading adds it directly (and so whether it is shadowed):
+    /// under radiosity, polygon lights are emitters of the solution already.
+    pub fn direct_lights(&self, scene: &Scene) -> Vec<bool> {
+        scene
+            .lights
+            .iter()
+            .map(|light| match self {
+                Integrator::Direct => true,
+                Integrator::Radiosity(_) => !matches!(light, Light::Area(_)),
+            })
+            .collect()
+    }
+
+    /// Whether Gouraud shading must interpolate each direct light on its own.
+    pub fn gouraud_per_light(&self, scene: &Scene, shadowed: bool) -> bool {
+        match self {
+            Integrator::Direct => shadowed && scene.lights.len() > 1,
+            Integrator::Radiosity(_) => true,
+        }
+    }
+
+    /// The polygons the scan-line pass draws, on `view`'s screen.
+    pub fn draw_list(&self, scene: &Scene, view: &View, direct: &[bool]) -> Vec<ScreenPolygon> {
+        match self {
+            Integrator::Direct => {
+                let colors = vertex_colors(scene, view, direct);
+                prepare(
+                    view,
+                    scene
+                        .polygons
+                        .iter()
+                        .zip(&colors)
+                        .enumerate()
+                        .map(|(id, (p, c))| ToPrepare {
+                            id: id as u32,
+                            element: id as u32,
+                            vertices: &p.vertices,
+                            colors: c,
+                            affine_uv: scene.materials[p.material].interpolation
+                                == crate::texture::Interpolation::Affine,
+                        }),
+                )
+            }
+            Integrator::Radiosity(solution) => {
+                let pieces =
+                    display::element_polygons(&solution.mesh, &solution.elements, solution.display);
+                prepare(
+                    view,
+                    pieces.iter().enumerate().map(|(e, piece)| ToPrepare {
+                        id: piece.polygon as u32,
+                        element: e as u32,
+                        vertices: &piece.vertices,
+                        colors: &piece.colors,
+                        affine_uv: false,
+                    }),
+                )
+            }
+        }
+    }
+
+    /// The radiance of every sample of `band`.
+    pub fn shade_band(
+        &self,
+        shading: &FrameShading,
+        scene: &Scene,
+        band: &VisibleSurface,
+        visibility: &Visibility,
+    ) -> Vec<Vec3> {
+        match self {
+            Integrator::Direct => shading.shade_band(band, visibility),
+            Integrator::Radiosity(_) => (0..band.samples.len())
+                .into_par_iter()
+                .map(|k| {
+                    let s = &band.samples[k];
+                    if s.is_empty() {
+                        return scene.render.background;
+                    }
+                    // Radiosity leaves the front only; a surface seen from behind
+                    // is black.
+                    if !shading.front(band, k) {
+                        return Vec3::ZERO;
+                    }
+                    let emitted = scene.material_of(s.polygon as usize).emission;
+                    let solved = match shading.diffuse_texture_scale(band, k) {
+                        Some(scale) => emitted + (s.color - emitted) * scale,
+                        None => s.color,
+                    };
+                    solved + shading.lit(band, k, visibility)
+                })
+                .collect(),
+        }
+    }
+}

@@ -1,0 +1,160 @@
+//! The renderer: one scene, and the view-independent work of its frames kept between
+//! them. The occluders' hierarchy, each light's shadow pre-pass (shadow maps, shadow
+//! polygons, shadow volumes' quads, Bouknight & Kelley's projections) and the
+//! radiosity solution are built the first time a frame needs them and reused after
+//! (texture pyramids and summed-area tables are built once, with the scene).
+//! Moving the camera invalidates none of it; moving a light, only that light's
+//! shadows; changing the shadow settings, every light's shadows.
+
+use super::frame::render_frame;
+use super::integrator::Integrator;
+use crate::output::{Buffer, Image};
+use crate::radiosity::{self, Solution};
+use crate::scene::{Camera, Light, Scene};
+use crate::settings::ShadowSettings;
+use crate::shadow::{self, LightShadows, SceneOccluders, SharedWork};
+use anyhow::{Result, bail};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+
+/// How many view-independent pre-passes a renderer has built.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Prepasses {
+    /// The occluders' bounding volume hierarchy.
+    pub occluders: usize,
+    /// Lights' shadow pre-passes.
+    pub light_shadows: usize,
+    /// Radiosity solutions.
+    pub radiosity: usize,
+}
+
+/// A frame and the buffers asked for.
+pub struct Rendered {
+    pub image: Image,
+    pub buffers: Vec<Buffer>,
+}
+
+pub struct Renderer {
+    scene: Scene,
+    occluders: Mutex<Option<Arc<SceneOccluders>>>,
+    lights: Vec<Mutex<Option<Arc<dyn LightShadows>>>>,
+    radiosity: Mutex<Option<Arc<Solution>>>,
+    built_occluders: AtomicUsize,
+    built_light_shadows: AtomicUsize,
+    built_radiosity: AtomicUsize,
+}
+
+impl Renderer {
+    pub fn new(scene: Scene) -> Renderer {
+        Renderer {
+            lights: scene.lights.iter().map(|_| Mutex::new(None)).collect(),
+            scene,
+            occluders: Mutex::new(None),
+            radiosity: Mutex::new(None),
+            built_occluders: AtomicUsize::new(0),
+            built_light_shadows: AtomicUsize::new(0),
+            built_radiosity: AtomicUsize::new(0),
+        }
+    }
+
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The pre-passes built so far.
+    pub fn prepasses(&self) -> Prepasses {
+        Prepasses {
+            occluders: self.built_occluders.load(Ordering::Relaxed),
+            light_shadows: self.built_light_shadows.load(Ordering::Relaxed),
+            radiosity: self.built_radiosity.load(Ordering::Relaxed),
+        }
+    }
+
+    /// A new camera: nothing view-independent changes.
+    pub fn set_camera(&mut self, camera: Camera) {
+        self.scene.camera = camera;
+    }
+
+    /// Moves or changes light `index`: its shadows are redone. A polygon light is a
+    /// polygon of the scene (geometry), which a renderer does not change.
+    pub fn set_light(&mut self, index: usize, light: Light) -> Result<()> {
+        let Some(old) = self.scene.lights.get(index) else {
+            bail!("the scene has no light {index}");
+        };
+        if matches!(old, Light::Area(_)) || matches!(light, Light::Area(_)) {
+            bail!(
+                "{} is a polygon of the scene: change the scene, not the light",
+                shadow::describe(old, index)
+            );
+        }
+        self.scene.lights[index] = light;
+        *self.lights[index].lock().expect("no poisoned lock") = None;
+        Ok(())
+    }
+
+    /// New shadow settings: every light's shadows are redone.
+    pub fn set_shadows(&mut self, settings: ShadowSettings) {
+        self.scene.shadows = settings;
+        for slot in &self.lights {
+            *slot.lock().expect("no poisoned lock") = None;
+        }
+    }
+
+    /// Hands the renderer a radiosity solution of its scene (solved elsewhere, with
+    /// progress shown, say), so that it is not solved again.
+    pub fn set_radiosity_solution(&mut self, solution: Arc<Solution>) {
+        *self.radiosity.lock().expect("no poisoned lock") = Some(solution);
+    }
+
+    /// The frame's linear radiance image.
+    pub fn render(&self) -> Result<Image> {
+        Ok(render_frame(self, &[])?.image)
+    }
+
+    /// The frame, and the buffers named in `buffers` (see `available_buffers`).
+    pub fn render_with_buffers(&self, buffers: &[String]) -> Result<Rendered> {
+        render_frame(self, buffers)
+    }
+
+    /// How this scene's frames are lit.
+    pub fn integrator(&self) -> Result<Integrator> {
+        match &self.scene.radiosity {
+            None => Ok(Integrator::Direct),
+            Some(settings) => {
+                let mut slot = self.radiosity.lock().expect("no poisoned lock");
+                if let Some(solution) = slot.as_ref() {
+                    return Ok(Integrator::Radiosity(solution.clone()));
+                }
+                let solution = Arc::new(radiosity::solve(&self.scene, settings, &mut |_, _| {})?);
+                self.built_radiosity.fetch_add(1, Ordering::Relaxed);
+                *slot = Some(solution.clone());
+                Ok(Integrator::Radiosity(solution))
+            }
+        }
+    }
+
+    /// Light `index`'s shadow pre-pass (`None`: unshadowed).
+    pub fn light_shadows(&self, index: usize) -> Result<Option<Arc<dyn LightShadows>>> {
+        let mut slot = self.lights[index].lock().expect("no poisoned lock");
+        if let Some(shadows) = slot.as_ref() {
+            return Ok(Some(shadows.clone()));
+        }
+        let built = shadow::prepare(&self.scene, index, &self.scene.shadows, self)?;
+        if let Some(shadows) = &built {
+            self.built_light_shadows.fetch_add(1, Ordering::Relaxed);
+            *slot = Some(shadows.clone());
+        }
+        Ok(built)
+    }
+}
+
+impl SharedWork for Renderer {
+    fn occluders(&self) -> Arc<SceneOccluders> {
+        let mut slot = self.occluders.lock().expect("no poisoned lock");
+        slot.get_or_insert_with(|| {
+            self.built_occluders.fetch_add(1, Ordering::Relaxed);
+            Arc::new(SceneOccluders::new(&self.scene.polygons))
+        })
+        .clone()
+    }
+}

@@ -1,0 +1,55 @@
+//! The object-space methods (Bouknight & Kelley's shadow polygons, Atherton, Weiler
+//! & Greenberg's lit detail polygons) attach polygons to each receiver; in one frame,
+//! those of a receiver are projected onto the screen and entered in an edge table
+//! the first time a band shows the receiver, then swept on the rows of each band.
+
+use crate::raster::{EdgeTable, ScreenPolygon, VisibleSurface, spans_inside};
+use std::sync::OnceLock;
+
+/// One receiver's polygons on the screen, with their edge table.
+pub struct Projected {
+    table: EdgeTable,
+}
+
+/// Per receiver, its polygons on this frame's screen, built on first use.
+pub struct ReceiverScreens<F> {
+    slots: Vec<OnceLock<Option<Projected>>>,
+    height: u32,
+    project: F,
+}
+
+impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync> ReceiverScreens<F> {
+    /// `project(r)` gives receiver r's polygons on a screen `height` rows high.
+    pub fn new(receivers: usize, height: u32, project: F) -> ReceiverScreens<F> {
+        ReceiverScreens {
+            slots: (0..receivers).map(|_| OnceLock::new()).collect(),
+            height,
+            project,
+        }
+    }
+
+    /// Calls `f(row, first, last)` for every span of `band`'s rows that receiver
+    /// `r`'s polygons cover (their union), row by row.
+    pub fn spans(&self, r: usize, band: &VisibleSurface, mut f: impl FnMut(u32, u32, u32)) {
+        let projected = self.slots[r].get_or_init(|| {
+            let polygons = (self.project)(r);
+            (!polygons.is_empty()).then(|| Projected {
+                table: EdgeTable::build(&polygons, self.height),
+            })
+        });
+        if let Some(p) = projected {
+            spans_inside(&p.table, band.width, band.rows(), |row, a, b, _| {
+                f(row, a, b)
+            });
+        }
+    }
+}
+
+/// The receivers (polygon ids) visible somewhere in `band`, ascending.
+pub fn seen_in(band: &VisibleSurface, polygons: usize) -> Vec<usize> {
+    let mut seen = vec![false; polygons];
+    for s in band.samples.iter().filter(|s| !s.is_empty()) {
+        seen[s.polygon as usize] = true;
+    }
+    (0..polygons).filter(|&r| seen[r]).collect()
+}
