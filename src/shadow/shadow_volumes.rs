@@ -26,11 +26,11 @@
 //! occluders' own edges). Scene key: `[shadows] method = "shadow-volumes"`.
 
 use super::per_sample;
-use super::ray_cast::segment_meets_polygon;
 use crate::geometry::bvh::Aabb;
 use crate::geometry::polygon::{centroid, newell_normal};
 use crate::raster::{ScreenPolygon, View, VisibleSurface, covered_samples};
 use crate::scene::Scene;
+use crate::scene::ray_queries::segment_meets_polygon;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
