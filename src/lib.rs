@@ -5,7 +5,7 @@
 //! clipped and projected, swept by the scan-line visible-surface pass (`raster`)
 //! into a visible-surface buffer, shaded (`shading`) with each light weighted by its
 //! visibility term (`shadow`), and box-filtered into a linear radiance `Image`
-//! (`output`), saved as sRGB PNG or linear PFM.
+//! (`output`), saved as sRGB PNG or linear PFM or EXR.
 
 pub mod catalogue;
 pub mod geometry;

@@ -100,6 +100,33 @@ fn renders_a_catalogue_entry_from_any_directory() {
     assert!(dir.path().join("d.png").exists());
 }
 
+/// EXR and PFM both hold the linear radiance as f32: the same render written to
+/// each reads back bit for bit the same, and `compare` finds no difference; a file
+/// that is not an EXR is one error line naming it.
+#[test]
+fn exr_and_pfm_hold_the_same_linear_image() {
+    let dir = workspace(&[("broken.exr", "not an image")]);
+    for name in ["c.exr", "c.pfm"] {
+        let run = lumiere(
+            &["render", "cornell-box", "--test-size", "-o", name],
+            dir.path(),
+        );
+        assert_eq!(run.code, 0, "{}", run.stderr);
+    }
+    let exr = lumiere::output::load(&dir.path().join("c.exr")).unwrap();
+    let pfm = lumiere::output::load(&dir.path().join("c.pfm")).unwrap();
+    assert_eq!((exr.width, exr.height), (128, 128));
+    assert_eq!(exr, pfm);
+    let compare = lumiere(&["compare", "c.exr", "c.pfm", "--json"], dir.path());
+    assert_eq!(compare.code, 0, "{}", compare.stderr);
+    let figures: serde_json::Value = serde_json::from_str(&compare.stdout).unwrap();
+    assert_eq!(figures["rmse"], 0.0);
+    assert_eq!(figures["max_difference"], 0);
+    assert_eq!(figures["differing_share"], 0.0);
+    let run = lumiere(&["compare", "broken.exr", "c.pfm"], dir.path());
+    assert_clear_error(&run, "broken.exr", &dir.path().join("nothing"));
+}
+
 #[test]
 fn renders_a_scene_file_with_overrides() {
     let dir = workspace(&[("s.toml", &scene(CAMERA, ""))]);

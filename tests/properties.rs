@@ -168,8 +168,9 @@ proptest! {
 
 mod bvh {
     use glam::DVec3;
+    use lumiere::scene::ray_queries::segment_meets_polygon;
     use lumiere::scene::{Polygon, Vertex};
-    use lumiere::shadow::ray_cast::{Occluders, segment_meets_polygon};
+    use lumiere::shadow::ray_cast::Occluders;
     use proptest::prelude::*;
 
     fn point() -> impl Strategy<Value = DVec3> {

@@ -4,7 +4,7 @@ use anyhow::Result;
 use lumiere::output;
 use std::path::PathBuf;
 
-/// Compare two images (PNG or PFM): RMSE, PSNR, largest channel difference and the
+/// Compare two images (PNG, PFM or EXR): RMSE, PSNR, largest channel difference and the
 /// share of pixels differing by more than 2/255, on their 8-bit sRGB values.
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -16,7 +16,7 @@ pub struct Args {
     /// Magnification of the difference image.
     #[arg(long, default_value_t = 8.0)]
     gain: f32,
-    /// Exposure applied to both before comparing (matters for PFM).
+    /// Exposure applied to both before comparing (matters for PFM and EXR).
     #[arg(long, default_value_t = 1.0)]
     exposure: f32,
     /// Print the figures as JSON.

@@ -7,14 +7,15 @@ use lumiere::shadow::ShadowMethod;
 use lumiere::{catalogue, load_scene, output};
 use std::path::PathBuf;
 
-/// Render a catalogue entry (by id) or a scene file (.toml) to PNG or PFM.
+/// Render a catalogue entry (by id) or a scene file (.toml) to PNG, PFM or EXR.
 ///
-/// PNG is 8-bit sRGB after the scene's exposure; PFM is linear radiance.
+/// PNG is 8-bit sRGB after the scene's exposure; PFM and EXR are linear radiance
+/// (32-bit float).
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// A catalogue id (see `lumiere list`) or the path of a .toml scene file.
     scene: String,
-    /// Output image: .png (sRGB) or .pfm (linear radiance).
+    /// Output image: .png (sRGB), .pfm or .exr (linear radiance).
     #[arg(short, long)]
     output: PathBuf,
     /// Image width in pixels (overrides camera.width).

@@ -1,6 +1,8 @@
 //! A bounding volume hierarchy over the scene's polygons, built by the surface area
-//! heuristic (MacDonald & Booth 1990) with binned splits (Wald 2007), for segment
-//! queries: does anything block the segment between two points?
+//! heuristic (MacDonald & Booth 1990) with binned splits (Wald 2007). Two queries:
+//! does anything block the segment between two points (`any_on_segment`, stopping at
+//! the first hit), and which item does a ray meet first (`closest_on_ray`, children
+//! visited near-first, boxes beyond the nearest hit so far pruned).
 
 use glam::DVec3;
 
@@ -48,6 +50,16 @@ impl Aabb {
         let near = t0.min(t1).max_element().max(0.0);
         let far = t0.max(t1).min_element().min(1.0);
         near <= far
+    }
+
+    /// Where the ray origin + t·direction, t in [t_min, t_max], enters the box, or
+    /// `None` if it misses it (`inverse` is 1/direction per axis).
+    fn ray_entry(&self, origin: DVec3, inverse: DVec3, t_min: f64, t_max: f64) -> Option<f64> {
+        let t0 = (self.min - origin) * inverse;
+        let t1 = (self.max - origin) * inverse;
+        let near = t0.min(t1).max_element().max(t_min);
+        let far = t0.max(t1).min_element().min(t_max);
+        (near <= far).then_some(near)
     }
 }
 
@@ -209,5 +221,85 @@ impl Bvh {
             }
         }
         false
+    }
+
+    /// The nearest item the ray origin + t·direction meets for t in [t_min, t_max],
+    /// with its parameter. `hit(item)` gives the parameter where the ray meets the
+    /// item itself, if it does; parameters outside [t_min, t_max] are ignored. Of
+    /// equal parameters the smaller item index wins, so the answer does not depend on
+    /// the order of the traversal.
+    pub fn closest_on_ray(
+        &self,
+        origin: DVec3,
+        direction: DVec3,
+        t_min: f64,
+        t_max: f64,
+        mut hit: impl FnMut(u32) -> Option<f64>,
+    ) -> Option<(u32, f64)> {
+        if self.nodes.is_empty() || t_min > t_max {
+            return None;
+        }
+        let inverse = DVec3::ONE / direction;
+        let mut best: Option<(u32, f64)> = None;
+        let limit = |best: &Option<(u32, f64)>| best.map_or(t_max, |b| b.1);
+        let mut stack = Vec::with_capacity(64);
+        if let Some(entry) = self.nodes[0]
+            .bounds()
+            .ray_entry(origin, inverse, t_min, t_max)
+        {
+            stack.push((0u32, entry));
+        }
+        while let Some((n, entry)) = stack.pop() {
+            // A box entered beyond the nearest hit so far cannot hold a nearer one.
+            if entry > limit(&best) {
+                continue;
+            }
+            match &self.nodes[n as usize] {
+                Node::Leaf { first, count, .. } => {
+                    for &i in &self.items[*first as usize..(*first + *count) as usize] {
+                        let Some(t) = hit(i) else { continue };
+                        if !(t_min..=t_max).contains(&t) {
+                            continue;
+                        }
+                        let nearer = match best {
+                            None => true,
+                            Some((j, b)) => t < b || (t == b && i < j),
+                        };
+                        if nearer {
+                            best = Some((i, t));
+                        }
+                    }
+                }
+                Node::Inner { left, right, .. } => {
+                    let t_far = limit(&best);
+                    let enter = |c: u32| {
+                        self.nodes[c as usize]
+                            .bounds()
+                            .ray_entry(origin, inverse, t_min, t_far)
+                            .map(|e| (c, e))
+                    };
+                    let (l, r) = (enter(*left), enter(*right));
+                    // Pushed far child first, so the near one is visited first.
+                    match (l, r) {
+                        (Some(a), Some(b)) => {
+                            let (near, far) = if a.1 <= b.1 { (a, b) } else { (b, a) };
+                            stack.push(far);
+                            stack.push(near);
+                        }
+                        (Some(a), None) | (None, Some(a)) => stack.push(a),
+                        (None, None) => {}
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
+impl Node {
+    fn bounds(&self) -> &Aabb {
+        match self {
+            Node::Leaf { bounds, .. } | Node::Inner { bounds, .. } => bounds,
+        }
     }
 }

@@ -1,6 +1,6 @@
 //! Comparing two images: RMSE, PSNR, largest channel difference and the share of
 //! pixels that differ visibly, on the 8-bit sRGB values both images display as (so
-//! a PNG and a PFM of the same render compare equal).
+//! a PNG and a PFM or EXR of the same render compare equal).
 
 use super::{Image, srgb_decode, to_srgb8};
 use anyhow::{Result, ensure};

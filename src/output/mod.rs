@@ -1,9 +1,11 @@
-//! Images: linear radiance in memory; PNG (sRGB after exposure) and PFM (linear) on
-//! disk, chosen by extension; files are written whole or not at all.
+//! Images: linear radiance in memory; PNG (sRGB after exposure), PFM and OpenEXR
+//! (linear, 32-bit float) on disk, chosen by extension; files are written whole or
+//! not at all.
 
 mod animation;
 mod buffer;
 mod compare;
+mod exr;
 mod pfm;
 mod png;
 
@@ -59,6 +61,7 @@ impl Image {
 pub enum Format {
     Png,
     Pfm,
+    Exr,
 }
 
 impl Format {
@@ -67,6 +70,7 @@ impl Format {
         match self {
             Format::Png => "png",
             Format::Pfm => "pfm",
+            Format::Exr => "exr",
         }
     }
 
@@ -79,8 +83,9 @@ impl Format {
         {
             Some("png") => Ok(Format::Png),
             Some("pfm") => Ok(Format::Pfm),
+            Some("exr") => Ok(Format::Exr),
             _ => bail!(
-                "{}: unknown image format (use .png for sRGB or .pfm for linear radiance)",
+                "{}: unknown image format (use .png for sRGB, .pfm or .exr for linear radiance)",
                 path.display()
             ),
         }
@@ -92,6 +97,7 @@ pub fn encode(image: &Image, format: Format, exposure: f32) -> Result<Vec<u8>> {
     match format {
         Format::Png => png::encode(image, exposure),
         Format::Pfm => Ok(pfm::encode(image)),
+        Format::Exr => exr::encode(image),
     }
 }
 
@@ -124,12 +130,13 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     Ok(())
 }
 
-/// Reads a PNG (decoded from sRGB to linear) or a PFM.
+/// Reads a PNG (decoded from sRGB to linear), a PFM or an OpenEXR file.
 pub fn load(path: &Path) -> Result<Image> {
     let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
     match Format::of(path)? {
         Format::Png => png::decode(&bytes),
         Format::Pfm => pfm::decode(&bytes),
+        Format::Exr => exr::decode(&bytes),
     }
     .with_context(|| format!("{}", path.display()))
 }

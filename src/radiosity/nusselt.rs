@@ -13,7 +13,7 @@
 //! random), so the estimate is deterministic and converges as N grows.
 
 use super::receivers::Receivers;
-use crate::shadow::ray_cast::contains;
+use crate::scene::ray_queries::contains;
 use glam::DVec3;
 
 #[derive(Clone, Debug)]

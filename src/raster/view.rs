@@ -62,6 +62,14 @@ impl View {
         self.forward * self.focal + self.right * (x - self.centre.x) + self.up * (self.centre.y - y)
     }
 
+    /// The eye ray through screen point (x, y) as (origin, direction): the inverse of
+    /// `project`. The direction is scaled so that origin + t·direction lies at eye
+    /// depth z = t, the depth the visible-surface buffer stores; a query over
+    /// t ≥ `near` sees what the scan-line pass sees after clipping to the near plane.
+    pub fn ray_through(&self, x: f64, y: f64) -> (DVec3, DVec3) {
+        (self.eye, self.ray(x, y) / self.focal)
+    }
+
     /// The view frustum as eye-space half-spaces a·p + d ≥ 0: near, left, right, top,
     /// bottom. The side planes pass through the eye, so clipping against them in eye
     /// space is exact.

@@ -153,7 +153,7 @@ impl SharedWork for Renderer {
         let mut slot = self.occluders.lock().expect("no poisoned lock");
         slot.get_or_insert_with(|| {
             self.built_occluders.fetch_add(1, Ordering::Relaxed);
-            Arc::new(SceneOccluders::new(&self.scene.polygons))
+            Arc::new(SceneOccluders::owned(self.scene.polygons.clone()))
         })
         .clone()
     }

@@ -10,6 +10,7 @@ pub mod file;
 mod materials;
 mod obj;
 mod radiosity_settings;
+pub mod ray_queries;
 pub mod resources;
 mod shapes;
 pub mod tables;

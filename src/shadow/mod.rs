@@ -161,7 +161,7 @@ pub fn visibility(
     struct Fresh<'a>(&'a Scene);
     impl SharedWork for Fresh<'_> {
         fn occluders(&self) -> Arc<SceneOccluders> {
-            Arc::new(SceneOccluders::new(&self.0.polygons))
+            Arc::new(SceneOccluders::owned(self.0.polygons.clone()))
         }
     }
     let mut per_light = Vec::new();

@@ -14,63 +14,30 @@
 //! `[shadows] method = "ray-cast"`.
 
 use super::{BandShadows, FrameShadows, LightShadows, per_sample};
-use crate::geometry::bvh::{Aabb, Bvh};
 use crate::raster::{View, VisibleSurface};
+use crate::scene::ray_queries::SceneRays;
 use crate::scene::{Light, Polygon, Scene};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use std::sync::Arc;
 
-/// Parametric margin at both ends of a shadow segment.
-const END_MARGIN: f64 = 1e-9;
-
 /// The scene's polygons in a hierarchy, ready for segment queries.
-pub struct Occluders<'a> {
-    polygons: &'a [Polygon],
-    bvh: Bvh,
-}
+pub struct Occluders<'a>(SceneRays<'a>);
 
 impl<'a> Occluders<'a> {
     pub fn new(polygons: &'a [Polygon]) -> Occluders<'a> {
-        let boxes: Vec<Aabb> = polygons.iter().map(|p| Aabb::of(p.positions())).collect();
-        Occluders {
-            polygons,
-            bvh: Bvh::build(&boxes),
-        }
+        Occluders(SceneRays::new(polygons))
     }
 
     /// Whether a polygon other than `receiver` meets the segment strictly between
     /// `from` and `to`.
     pub fn blocked(&self, from: DVec3, to: DVec3, receiver: Option<u32>) -> bool {
-        self.bvh.any_on_segment(from, to, |i| {
-            Some(i) != receiver && segment_meets_polygon(from, to, &self.polygons[i as usize])
-        })
+        self.0.any_hit(from, to, receiver.as_slice())
     }
 }
 
-/// The scene's polygons and their hierarchy, owned, so that a renderer can keep
-/// them between frames and share them between lights.
-pub struct SceneOccluders {
-    polygons: Vec<Polygon>,
-    bvh: Bvh,
-}
-
-impl SceneOccluders {
-    pub fn new(polygons: &[Polygon]) -> SceneOccluders {
-        let boxes: Vec<Aabb> = polygons.iter().map(|p| Aabb::of(p.positions())).collect();
-        SceneOccluders {
-            polygons: polygons.to_vec(),
-            bvh: Bvh::build(&boxes),
-        }
-    }
-
-    /// Whether a polygon not in `skip` meets the segment strictly between `from`
-    /// and `to`.
-    pub fn blocked(&self, from: DVec3, to: DVec3, skip: &[u32]) -> bool {
-        self.bvh.any_on_segment(from, to, |i| {
-            !skip.contains(&i) && segment_meets_polygon(from, to, &self.polygons[i as usize])
-        })
-    }
-}
+/// The scene's polygons and their hierarchy, owned, so that a renderer can keep them
+/// between frames and share them between lights.
+pub type SceneOccluders = SceneRays<'static>;
 
 /// Ray casting's pre-pass for one light: the scene's hierarchy (shared by all lights)
 /// and the light.
@@ -108,70 +75,11 @@ impl FrameShadows for RayCastFrame<'_> {
             Light::Point(l) => {
                 let at = l.position;
                 per_sample(self.scene, self.view, band, at, |_, polygon, position| {
-                    !occluders.blocked(position, at, &[polygon])
+                    !occluders.any_hit(position, at, &[polygon])
                 })
             }
             Light::Area(_) => unreachable!("refused by `prepare`"),
         };
         BandShadows::fraction(fractions)
     }
-}
-
-/// The visibility of the point light at `light` for every sample.
-pub fn visibility(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3) -> Vec<f32> {
-    let occluders = Occluders::new(&scene.polygons);
-    per_sample(scene, view, surface, light, |_, polygon, position| {
-        !occluders.blocked(position, light, Some(polygon))
-    })
-}
-
-/// Whether the segment a→b crosses the polygon's plane strictly inside the segment,
-/// at a point inside the polygon.
-pub fn segment_meets_polygon(a: DVec3, b: DVec3, polygon: &Polygon) -> bool {
-    let n = polygon.normal;
-    let origin = polygon.vertices[0].position;
-    let (da, db) = ((a - origin).dot(n), (b - origin).dot(n));
-    if da * db >= 0.0 {
-        return false; // both on one side, or one end on the plane
-    }
-    let t = da / (da - db);
-    if !(END_MARGIN..=1.0 - END_MARGIN).contains(&t) {
-        return false;
-    }
-    let hit = a + (b - a) * t;
-    contains(polygon, hit)
-}
-
-/// Crossing-number test of a point of the polygon's plane, in the projection that
-/// drops the normal's largest axis.
-pub fn contains(polygon: &Polygon, p: DVec3) -> bool {
-    let n = polygon.normal.abs();
-    let drop = if n.x >= n.y && n.x >= n.z {
-        0
-    } else if n.y >= n.z {
-        1
-    } else {
-        2
-    };
-    let flat = |v: DVec3| match drop {
-        0 => DVec2::new(v.y, v.z),
-        1 => DVec2::new(v.z, v.x),
-        _ => DVec2::new(v.x, v.y),
-    };
-    let q = flat(p);
-    let mut inside = false;
-    let count = polygon.vertices.len();
-    for i in 0..count {
-        let (a, b) = (
-            flat(polygon.vertices[i].position),
-            flat(polygon.vertices[(i + 1) % count].position),
-        );
-        if (a.y > q.y) != (b.y > q.y) {
-            let x = a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y);
-            if x > q.x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
 }

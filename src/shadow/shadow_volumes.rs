@@ -25,7 +25,6 @@
 //! it is nearer than the visible surface by a relative 1e-9 (the quads start on the
 //! occluders' own edges). Scene key: `[shadows] method = "shadow-volumes"`.
 
-use super::ray_cast::segment_meets_polygon;
 use super::{BandShadows, FrameShadows, LightShadows, per_sample};
 use crate::geometry::bvh::Aabb;
 use crate::geometry::polygon::{centroid, newell_normal};
@@ -33,6 +32,7 @@ use crate::raster::{
     EdgeTable, LightVisibility, ScreenPolygon, View, VisibleSurface, spans_inside,
 };
 use crate::scene::Scene;
+use crate::scene::ray_queries::segment_meets_polygon;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
