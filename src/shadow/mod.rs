@@ -4,7 +4,8 @@
 //!
 //! Shared rule (Appel's "self-shadow"): a sample whose surface, on the side the eye
 //! sees, faces away from the light is shadowed by every method; the methods differ in
-//! how they find the cast shadows. Area lights are not shadowed by these hard-shadow
+//! how they find the cast shadows. Spot lights are shadowed as point lights at their
+//! position; distant, polygon and sphere lights are not shadowed by these hard-shadow
 //! methods.
 
 pub mod cube_faces;
@@ -16,7 +17,7 @@ pub mod shadow_polygons;
 pub mod shadow_volumes;
 
 use crate::raster::{View, VisibleSurface};
-use crate::scene::{Light, Scene};
+use crate::scene::Scene;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -69,25 +70,23 @@ impl Visibility {
         let per_light = scene
             .lights
             .iter()
-            .map(|light| match light {
-                Light::Point(l) => {
-                    let at = l.position;
-                    Some(match method {
-                        ShadowMethod::None => unreachable!("handled above"),
-                        ShadowMethod::RayCast => ray_cast::visibility(scene, view, surface, at),
-                        ShadowMethod::Scanline => {
-                            scanline_shadows::visibility(scene, view, surface, at)
-                        }
-                        ShadowMethod::ShadowMap => shadow_map::visibility(scene, view, surface, at),
-                        ShadowMethod::ShadowPolygons => {
-                            shadow_polygons::visibility(scene, view, surface, at)
-                        }
-                        ShadowMethod::ShadowVolumes => {
-                            shadow_volumes::visibility(scene, view, surface, at)
-                        }
-                    })
-                }
-                Light::Area(_) => None,
+            .map(|light| {
+                // Point-like lights (point, spot) only; the others stay unshadowed.
+                let at = light.position()?;
+                Some(match method {
+                    ShadowMethod::None => unreachable!("handled above"),
+                    ShadowMethod::RayCast => ray_cast::visibility(scene, view, surface, at),
+                    ShadowMethod::Scanline => {
+                        scanline_shadows::visibility(scene, view, surface, at)
+                    }
+                    ShadowMethod::ShadowMap => shadow_map::visibility(scene, view, surface, at),
+                    ShadowMethod::ShadowPolygons => {
+                        shadow_polygons::visibility(scene, view, surface, at)
+                    }
+                    ShadowMethod::ShadowVolumes => {
+                        shadow_volumes::visibility(scene, view, surface, at)
+                    }
+                })
             })
             .collect();
         Visibility { per_light }
