@@ -2,5 +2,6 @@
 
 pub mod bvh;
 pub mod polygon;
+pub mod sampling;
 pub mod sutherland_hodgman;
 pub mod weiler_atherton;
