@@ -133,7 +133,7 @@ fn area_light(scene: &Scene) -> (Vec<DVec3>, DVec3, Vec3) {
         .lights
         .iter()
         .find_map(|l| match l {
-            Light::Area(a) => Some((a.vertices.clone(), a.normal, a.radiance)),
+            Light::Polygon(a) => Some((a.vertices.clone(), a.normal, a.radiance)),
             _ => None,
         })
         .unwrap()

@@ -667,6 +667,102 @@ fn radiosity_bad_input() {
     }
 }
 
+const SPOT: &str = "\n[[lights]]\ntype = \"spot\"\nposition = [0.0, 2.0, 0.0]\naxis = [0.0, -1.0, 0.0]\ncone_angle = 30.0\nintensity = [4.0, 4.0, 4.0]\n";
+
+/// Every kind of light renders, without shadows and with ray casting (which samples
+/// extended lights); a hard-shadow method refuses the lights it cannot shadow, in one
+/// line naming both; `area` still names a polygon light.
+#[test]
+fn five_kinds_of_light_render() {
+    let lights = format!(
+        "{SPOT}distribution = [[0.0, 1.0], [20.0, 0.7], [30.0, 0.0]]\n\n\
+         [[lights]]\ntype = \"distant\"\nname = \"sun\"\ndirection = [0.3, -1.0, 0.2]\nirradiance = [1.0, 1.0, 1.0]\n\n\
+         [[lights]]\ntype = \"sphere\"\ncentre = [1.0, 1.5, 0.0]\nradius = 0.25\nradiance = [2.0, 2.0, 2.0]\n\n\
+         [[lights]]\ntype = \"area\"\nvertices = [[-0.5, 2.0, 0.5], [0.5, 2.0, 0.5], [0.5, 2.0, -0.5], [-0.5, 2.0, -0.5]]\nradiance = [1.0, 1.0, 1.0]\n"
+    );
+    let text = scene(CAMERA, &lights);
+    let dir = workspace(&[("s.toml", &text)]);
+    for method in [
+        "shadow-map",
+        "scanline",
+        "shadow-volumes",
+        "shadow-polygons",
+    ] {
+        let run = lumiere(
+            &["render", "s.toml", "--shadows", method, "-o", "o.png"],
+            dir.path(),
+        );
+        assert_clear_error(
+            &run,
+            &format!("shadow method `{method}` cannot shadow light 2 (distant `sun`)"),
+            &dir.path().join("o.png"),
+        );
+    }
+    for method in ["none", "ray-cast"] {
+        let run = lumiere(
+            &["render", "s.toml", "--shadows", method, "-o", "o.png"],
+            dir.path(),
+        );
+        assert_eq!(run.code, 0, "{method}: {}", run.stderr);
+        let image = lumiere::output::load(&dir.path().join("o.png")).unwrap();
+        assert!(image.pixels.iter().any(|p| p.x > 0.0), "{method}: black");
+    }
+}
+
+#[test]
+fn bad_lights() {
+    let sphere = "\n[[lights]]\ntype = \"sphere\"\nname = \"bulb\"\ncentre = [0.0, 2.0, 0.0]\nradiance = [1.0, 1.0, 1.0]\n";
+    let distant = "\n[[lights]]\ntype = \"distant\"\nirradiance = [1.0, 1.0, 1.0]\n";
+    for (extra, fragment) in [
+        (
+            format!("{sphere}radius = 0.0\n"),
+            "lights[1] (`bulb`): radius must be a positive number, got 0",
+        ),
+        (
+            format!("{distant}direction = [0.0, 0.0, 0.0]\n"),
+            "lights[1]: direction must not be zero, got [0.0, 0.0, 0.0]",
+        ),
+        (
+            SPOT.replace("[0.0, -1.0, 0.0]", "[0.0, 0.0, 0.0]"),
+            "axis must not be zero",
+        ),
+        (
+            SPOT.replace("30.0", "95.0"),
+            "cone_angle must be in (0, 90] degrees, got 95",
+        ),
+        (
+            SPOT.replace("30.0", "0.0"),
+            "cone_angle must be in (0, 90] degrees, got 0",
+        ),
+        (
+            format!("{SPOT}distribution = [[0.0, 1.0], [20.0, 0.7], [20.0, 0.0]]\n"),
+            "distribution angles must increase, got 20 then 20",
+        ),
+        (
+            format!("{SPOT}distribution = [[0.0, 1.0], [20.0, -0.5]]\n"),
+            "distribution[1]: factor must be a non-negative number, got -0.5",
+        ),
+        (
+            format!("{SPOT}cosine_power = 2.0\ndistribution = [[0.0, 1.0]]\n"),
+            "give `cosine_power` or `distribution`, not both",
+        ),
+        (
+            format!("{SPOT}cosine_power = -1.0\n"),
+            "cosine_power must be a non-negative number, got -1",
+        ),
+        (
+            format!("{distant}direction = [0.0, -1.0, 0.0]\nradius = 2.0\n"),
+            "unknown field `radius`",
+        ),
+        (
+            "\n[[lights]]\ntype = \"laser\"\n".to_string(),
+            "unknown variant `laser`",
+        ),
+    ] {
+        render_error(&[("s.toml", &scene(CAMERA, &extra))], &["s.toml"], fragment);
+    }
+}
+
 #[test]
 fn form_factors_prints_the_matrix_as_json() {
     // Two unit squares facing each other at distance 1: the closed form is 0.1998.

@@ -58,10 +58,7 @@ fn first_point_light(scene: &Scene) -> Result<glam::DVec3> {
     scene
         .lights
         .iter()
-        .find_map(|l| match l {
-            Light::Point(p) => Some(p.position),
-            Light::Area(_) => None,
-        })
+        .find_map(Light::position)
         .context("the scene has no point light to cast shadow polygons from")
 }
 

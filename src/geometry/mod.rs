@@ -4,5 +4,6 @@
 pub mod bvh;
 pub mod lambert_contour;
 pub mod polygon;
+pub mod sampling;
 pub mod sutherland_hodgman;
 pub mod weiler_atherton;

@@ -43,7 +43,7 @@ impl Integrator {
             .iter()
             .map(|light| match self {
                 Integrator::Direct => true,
-                Integrator::Radiosity(_) => !matches!(light, Light::Area(_)),
+                Integrator::Radiosity(_) => !matches!(light, Light::Polygon(_)),
             })
             .collect()
     }

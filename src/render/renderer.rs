@@ -81,7 +81,7 @@ impl Renderer {
         let Some(old) = self.scene.lights.get(index) else {
             bail!("the scene has no light {index}");
         };
-        if matches!(old, Light::Area(_)) || matches!(light, Light::Area(_)) {
+        if matches!(old, Light::Polygon(_)) || matches!(light, Light::Polygon(_)) {
             bail!(
                 "{} is a polygon of the scene: change the scene, not the light",
                 shadow::describe(old, index)

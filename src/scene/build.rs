@@ -1,13 +1,14 @@
 //! From a parsed scene table to a `Scene`: shapes generated, OBJ files loaded,
-//! transforms applied, materials resolved, emitters turned into area lights.
+//! transforms applied, materials resolved, emitters turned into polygon lights.
 
 use super::file::{LightFile, ObjectFile, SceneFile, ShapeKind};
 use super::radiosity_settings;
 use super::resources::Resources;
 use super::shapes::{self, Faces};
 use super::{
-    AreaLight, Light, Material, Object, ObjectFrame, PointLight, Polygon, RenderSettings, Scene,
-    ShadowSettings, materials, obj, textures, transform, validate,
+    DistantLight, Light, Material, Object, ObjectFrame, PointLight, Polygon, PolygonLight,
+    RenderSettings, Scene, ShadowSettings, SphereLight, SpotDistribution, SpotLight, materials,
+    obj, textures, transform, validate,
 };
 use crate::geometry::polygon::{area, centroid, newell_normal, non_planarity};
 use crate::texture::Texture;
@@ -95,14 +96,18 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
     }
     let mut lights = Vec::new();
     for (index, light) in file.lights.iter().enumerate() {
-        if let Some(light) = builder
-            .add_light(index, light)
-            .with_context(|| format!("lights[{index}]"))?
+        if let Some(light) =
+            builder
+                .add_light(index, light)
+                .with_context(|| match light.name() {
+                    Some(name) => format!("lights[{index}] (`{name}`)"),
+                    None => format!("lights[{index}]"),
+                })?
         {
             lights.push(light);
         }
     }
-    lights.extend(builder.area_lights());
+    lights.extend(builder.polygon_lights());
     builder.warn_untextured_modes(render.shading);
 
     Ok(Scene {
@@ -284,26 +289,94 @@ impl Builder {
         });
     }
 
-    /// A point light is returned; an area light becomes an emissive polygon (and so
-    /// a light, through `area_lights`).
+    /// A point, distant, sphere or spot light is returned; a polygon light becomes
+    /// an emissive polygon (and so a light, through `polygon_lights`).
     fn add_light(&mut self, index: usize, light: &LightFile) -> Result<Option<Light>> {
         match light {
             LightFile::Point {
+                name,
                 position,
                 intensity,
             } => Ok(Some(Light::Point(PointLight {
                 position: validate::vec3("position", *position)?,
                 intensity: validate::colour("intensity", *intensity)?,
+                name: name.clone(),
             }))),
-            LightFile::Area { vertices, radiance } => {
+            LightFile::Distant {
+                name,
+                direction,
+                irradiance,
+            } => Ok(Some(Light::Distant(DistantLight {
+                direction: validate::direction("direction", *direction)?,
+                irradiance: validate::colour("irradiance", *irradiance)?,
+                name: name.clone(),
+            }))),
+            LightFile::Sphere {
+                name,
+                centre,
+                radius,
+                radiance,
+            } => {
+                ensure!(
+                    radius.is_finite() && *radius > 0.0,
+                    "radius must be a positive number, got {radius}"
+                );
+                Ok(Some(Light::Sphere(SphereLight {
+                    centre: validate::vec3("centre", *centre)?,
+                    radius: *radius,
+                    radiance: validate::colour("radiance", *radiance)?,
+                    name: name.clone(),
+                })))
+            }
+            LightFile::Spot {
+                name,
+                position,
+                axis,
+                cone_angle,
+                intensity,
+                cosine_power,
+                distribution,
+            } => {
+                ensure!(
+                    cone_angle.is_finite() && *cone_angle > 0.0 && *cone_angle <= 90.0,
+                    "cone_angle must be in (0, 90] degrees, got {cone_angle}"
+                );
+                let distribution = match (cosine_power, distribution) {
+                    (Some(_), Some(_)) => {
+                        bail!("give `cosine_power` or `distribution`, not both")
+                    }
+                    (Some(p), None) => {
+                        ensure!(
+                            p.is_finite() && *p >= 0.0,
+                            "cosine_power must be a non-negative number, got {p}"
+                        );
+                        SpotDistribution::CosinePower(*p)
+                    }
+                    (None, Some(table)) => SpotDistribution::Table(spot_table(table)?),
+                    (None, None) => SpotDistribution::CosinePower(0.0),
+                };
+                Ok(Some(Light::Spot(SpotLight {
+                    position: validate::vec3("position", *position)?,
+                    axis: validate::direction("axis", *axis)?,
+                    cone_angle: cone_angle.to_radians(),
+                    intensity: validate::colour("intensity", *intensity)?,
+                    distribution,
+                    name: name.clone(),
+                })))
+            }
+            LightFile::Polygon {
+                name,
+                vertices,
+                radiance,
+            } => {
                 let corners = vertices
                     .iter()
                     .map(|&v| validate::vec3("vertices", v))
                     .collect::<Result<Vec<_>>>()?;
                 check_polygon(&corners)?;
-                let name = format!("area light {index}");
+                let name = name.clone().unwrap_or_else(|| format!("lights[{index}]"));
                 let material = self.add_material(Material {
-                    name: name.clone(),
+                    name: format!("polygon light {index}"),
                     exponent: 1.0,
                     emission: validate::colour("radiance", *radiance)?,
                     ..Default::default()
@@ -339,22 +412,21 @@ impl Builder {
         }
     }
 
-    /// Every emissive polygon is a one-sided Lambertian area light.
-    fn area_lights(&self) -> Vec<Light> {
+    /// Every emissive polygon is a one-sided Lambertian polygon light, named after
+    /// its object.
+    fn polygon_lights(&self) -> Vec<Light> {
         self.polygons
             .iter()
             .enumerate()
             .filter(|(_, p)| self.materials[p.material].is_emitter())
             .map(|(index, p)| {
-                let vertices: Vec<DVec3> = p.positions().collect();
-                Light::Area(AreaLight {
-                    centre: centroid(&vertices),
-                    area: area(&vertices),
-                    vertices,
-                    normal: p.normal,
-                    radiance: self.materials[p.material].emission,
-                    polygon: index,
-                })
+                Light::Polygon(PolygonLight::new(
+                    p.positions().collect(),
+                    p.normal,
+                    self.materials[p.material].emission,
+                    index,
+                    Some(self.objects[p.object].name.clone()),
+                ))
             })
             .collect()
     }
@@ -374,6 +446,35 @@ fn object_frame(m: &DMat4, faces: &Faces, own_mapping: Option<Mapping>) -> Objec
         },
         own_mapping,
     }
+}
+
+/// A spot light's (degrees, factor) table: angles increasing from 0 up, factors
+/// non-negative; angles turned into radians.
+fn spot_table(table: &[[f64; 2]]) -> Result<Vec<(f64, f64)>> {
+    ensure!(
+        !table.is_empty(),
+        "distribution must hold at least one [angle, factor] pair"
+    );
+    for (k, &[angle, factor]) in table.iter().enumerate() {
+        ensure!(
+            angle.is_finite() && (0.0..=90.0).contains(&angle),
+            "distribution[{k}]: angle must be between 0 and 90 degrees, got {angle}"
+        );
+        ensure!(
+            factor.is_finite() && factor >= 0.0,
+            "distribution[{k}]: factor must be a non-negative number, got {factor}"
+        );
+        if k > 0 && angle <= table[k - 1][0] {
+            bail!(
+                "distribution angles must increase, got {} then {angle}",
+                table[k - 1][0]
+            );
+        }
+    }
+    Ok(table
+        .iter()
+        .map(|&[angle, factor]| (angle.to_radians(), factor))
+        .collect())
 }
 
 fn check_polygon(corners: &[DVec3]) -> Result<()> {

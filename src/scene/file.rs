@@ -273,17 +273,64 @@ fn ones() -> [f64; 2] {
     [1.0, 1.0]
 }
 
+/// `[[lights]]`: one light, its kind in `type`. Every kind takes an optional `name`
+/// for messages.
 #[derive(Debug, Deserialize)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
 pub enum LightFile {
     Point {
+        name: Option<String>,
         position: Vec3File,
+        /// W/sr per channel.
         intensity: Vec3File,
     },
-    Area {
+    /// Parallel light; `direction` is the way the light travels.
+    Distant {
+        name: Option<String>,
+        direction: Vec3File,
+        /// Irradiance on a surface facing the light.
+        irradiance: Vec3File,
+    },
+    /// A one-sided Lambertian polygon, also added to the scene as an emissive polygon.
+    #[serde(alias = "area")]
+    Polygon {
+        name: Option<String>,
         vertices: Vec<Vec3File>,
         radiance: Vec3File,
     },
+    /// A Lambertian sphere (not drawn, casts no shadow).
+    Sphere {
+        name: Option<String>,
+        centre: Vec3File,
+        radius: f64,
+        radiance: Vec3File,
+    },
+    Spot {
+        name: Option<String>,
+        position: Vec3File,
+        /// Where the spot points.
+        axis: Vec3File,
+        /// Half-angle of the cone, in degrees.
+        cone_angle: f64,
+        /// W/sr per channel on the axis.
+        intensity: Vec3File,
+        /// f(θ) = cosᵖ θ (default 0: a uniform cone).
+        cosine_power: Option<f64>,
+        /// Or f(θ) as (degrees, factor) pairs, interpolated linearly.
+        distribution: Option<Vec<[f64; 2]>>,
+    },
+}
+
+impl LightFile {
+    pub fn name(&self) -> Option<&str> {
+        match self {
+            LightFile::Point { name, .. }
+            | LightFile::Distant { name, .. }
+            | LightFile::Polygon { name, .. }
+            | LightFile::Sphere { name, .. }
+            | LightFile::Spot { name, .. } => name.as_deref(),
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]

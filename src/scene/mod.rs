@@ -7,6 +7,7 @@
 
 mod build;
 pub mod file;
+pub mod lights;
 mod materials;
 mod obj;
 mod radiosity_settings;
@@ -19,6 +20,10 @@ mod transform;
 mod validate;
 
 pub use build::scene_from_table;
+pub use lights::{
+    DistantLight, Light, LightSample, PointLight, PolygonLight, SphereLight, SpotDistribution,
+    SpotLight,
+};
 
 use crate::texture::mapping::Mapping;
 use crate::texture::{Interpolation, Texture};
@@ -161,33 +166,6 @@ impl ObjectFrame {
     pub fn normal_to_object(&self, n: DVec3) -> DVec3 {
         glam::DMat3::from_mat4(self.to_world).transpose() * n
     }
-}
-
-/// An isotropic point light with inverse-square falloff.
-#[derive(Clone, Debug)]
-pub struct PointLight {
-    pub position: DVec3,
-    /// Radiant intensity (W/sr per RGB channel).
-    pub intensity: Vec3,
-}
-
-/// A one-sided polygonal Lambertian emitter. It is also a polygon of the scene
-/// (`polygon`), so the camera sees it with its radiance.
-#[derive(Clone, Debug)]
-pub struct AreaLight {
-    pub vertices: Vec<DVec3>,
-    pub normal: DVec3,
-    /// Centroid of the vertices and area of the polygon.
-    pub centre: DVec3,
-    pub area: f64,
-    pub radiance: Vec3,
-    pub polygon: usize,
-}
-
-#[derive(Clone, Debug)]
-pub enum Light {
-    Point(PointLight),
-    Area(AreaLight),
 }
 
 /// Everything a render needs.

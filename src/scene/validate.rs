@@ -19,6 +19,13 @@ pub fn vec3(what: &str, v: Vec3File) -> Result<DVec3> {
     Ok(DVec3::from(v))
 }
 
+/// A direction: finite, not zero; returned as a unit vector.
+pub fn direction(what: &str, v: Vec3File) -> Result<DVec3> {
+    let d = vec3(what, v)?.normalize_or_zero();
+    ensure!(d != DVec3::ZERO, "{what} must not be zero, got {v:?}");
+    Ok(d)
+}
+
 pub fn colour(what: &str, v: Vec3File) -> Result<glam::Vec3> {
     let c = vec3(what, v)?;
     ensure!(

@@ -5,12 +5,21 @@
 //! its energy-normalised form f = k_s (e + 2)/(2π) cosᵉ α (R. R. Lewis, 1994), α the
 //! angle between the mirror direction of the light and the eye, so a material never
 //! reflects more than it receives and images compare with a physically based
-//! renderer's. Point lights: irradiance I cos θ / r². Area lights: the diffuse part
-//! is exact (Lambert's contour formula); the specular part treats the emitter as a
-//! point at its centroid with intensity L A cos θ_light, an approximation.
+//! renderer's.
+//!
+//! - Point lights: irradiance I cos θ / r².
+//! - Spot lights: the same with I(θ) = I f(θ), θ from the spot's axis.
+//! - Distant lights: irradiance E cos θ, θ from the direction the light comes from.
+//! - Polygon lights: the diffuse part is exact (Lambert's contour formula); the
+//!   specular part treats the emitter as a point at its centroid with intensity
+//!   L A cos θ_light, an approximation.
+//! - Sphere lights: the diffuse part is exact, the sphere partly below the
+//!   receiver's horizon included (`sphere_form_factor`); the specular part treats
+//!   the sphere as a point at its centre with intensity L π r², an approximation.
 
 use super::lambert_contour::projected_solid_angle;
-use crate::scene::{AreaLight, Light, Reflectance};
+use super::sphere_form_factor;
+use crate::scene::{DistantLight, Light, PolygonLight, Reflectance, SphereLight};
 use glam::{DVec3, Vec3};
 use std::f32::consts::PI;
 
@@ -30,7 +39,17 @@ pub fn reflected(point: &SurfacePoint, material: &Reflectance, light: &Light) ->
             let d = l.position - point.position;
             point_contribution(point, material, d, l.intensity)
         }
-        Light::Area(l) => area_contribution(point, material, l),
+        Light::Spot(l) => {
+            let factor = l.factor_towards(point.position);
+            if factor == 0.0 {
+                return Vec3::ZERO;
+            }
+            let d = l.position - point.position;
+            point_contribution(point, material, d, l.intensity * factor as f32)
+        }
+        Light::Distant(l) => distant_contribution(point, material, l),
+        Light::Polygon(l) => polygon_contribution(point, material, l),
+        Light::Sphere(l) => sphere_contribution(point, material, l),
     }
 }
 
@@ -62,7 +81,11 @@ fn specular_brdf(point: &SurfacePoint, material: &Reflectance, l: DVec3) -> Vec3
     material.specular * (e + 2.0) / (2.0 * PI) * cos_alpha.powf(e)
 }
 
-fn area_contribution(point: &SurfacePoint, material: &Reflectance, light: &AreaLight) -> Vec3 {
+fn polygon_contribution(
+    point: &SurfacePoint,
+    material: &Reflectance,
+    light: &PolygonLight,
+) -> Vec3 {
     let c = light.centre;
     // One-sided emitter: points behind its plane get nothing.
     if (point.position - c).dot(light.normal) <= 0.0 {
@@ -78,6 +101,40 @@ fn area_contribution(point: &SurfacePoint, material: &Reflectance, light: &AreaL
         if cos > 0.0 {
             let irradiance = intensity * (cos / d.length_squared()) as f32;
             radiance += specular_brdf(point, material, d.normalize()) * irradiance;
+        }
+    }
+    radiance
+}
+
+fn distant_contribution(
+    point: &SurfacePoint,
+    material: &Reflectance,
+    light: &DistantLight,
+) -> Vec3 {
+    let l = -light.direction;
+    let cos = point.normal.dot(l);
+    if cos <= 0.0 {
+        return Vec3::ZERO;
+    }
+    (material.diffuse / PI + specular_brdf(point, material, l)) * light.irradiance * cos as f32
+}
+
+fn sphere_contribution(point: &SurfacePoint, material: &Reflectance, light: &SphereLight) -> Vec3 {
+    let phi = sphere_form_factor::projected_solid_angle(
+        point.position,
+        point.normal,
+        light.centre,
+        light.radius,
+    ) as f32;
+    let mut radiance = material.diffuse / PI * light.radiance * phi;
+    if material.specular != Vec3::ZERO && phi > 0.0 {
+        let d = light.centre - point.position;
+        let l = d.normalize();
+        let cos = point.normal.dot(l);
+        if cos > 0.0 {
+            let intensity = light.radiance * (std::f64::consts::PI * light.radius.powi(2)) as f32;
+            let irradiance = intensity * (cos / d.length_squared()) as f32;
+            radiance += specular_brdf(point, material, l) * irradiance;
         }
     }
     radiance

@@ -225,7 +225,7 @@ impl<'a> FrameShading<'a> {
     /// The share of a polygon light's projected solid angle that its visible part
     /// keeps, seen from sample `k`.
     fn visible_ratio(&self, band: &VisibleSurface, k: usize, l: usize, part: &VisiblePart) -> f32 {
-        let Light::Area(light) = &self.scene.lights[l] else {
+        let Light::Polygon(light) = &self.scene.lights[l] else {
             return 1.0;
         };
         let s = &band.samples[k];

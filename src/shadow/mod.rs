@@ -11,7 +11,9 @@
 //!
 //! Shared rule (Appel's "self-shadow"): a sample whose surface, on the side the eye
 //! sees, faces away from a point light is shadowed by every method; the methods
-//! differ in how they find the cast shadows. A method asked for a light it cannot
+//! differ in how they find the cast shadows. Spot lights are point lights with a
+//! directional intensity: every hard-shadow method shadows them from their position.
+//! Ray casting also samples extended lights. A method asked for a light it cannot
 //! handle refuses it (`Unsupported`), naming both: nothing is silently unshadowed.
 
 pub mod cube_faces;
@@ -107,6 +109,14 @@ pub fn prepare(
     if method == ShadowMethod::None {
         return Ok(None);
     }
+    if method == ShadowMethod::RayCast {
+        return Ok(Some(Arc::new(ray_cast::RayCast::new(
+            shared.occluders(),
+            light.clone(),
+            index,
+            settings.light_samples,
+        ))));
+    }
     let Some(at) = point_position(light) else {
         return Err(Unsupported {
             method,
@@ -114,10 +124,7 @@ pub fn prepare(
         });
     };
     Ok(Some(match method {
-        ShadowMethod::None => unreachable!("handled above"),
-        ShadowMethod::RayCast => {
-            Arc::new(ray_cast::RayCast::new(shared.occluders(), light.clone()))
-        }
+        ShadowMethod::None | ShadowMethod::RayCast => unreachable!("handled above"),
         ShadowMethod::Scanline => Arc::new(scanline_shadows::ScanlineShadows::new(scene, at, true)),
         ShadowMethod::ShadowMap => Arc::new(shadow_map::CubeShadowMap::build(
             scene,
@@ -134,19 +141,12 @@ pub fn prepare(
 /// Where a light that the hard-shadow methods handle sits: point lights (and spot
 /// lights, which are point lights with a directional intensity).
 fn point_position(light: &Light) -> Option<DVec3> {
-    match light {
-        Light::Point(l) => Some(l.position),
-        _ => None,
-    }
+    light.position()
 }
 
-/// "light 2 (polygon)" for messages.
+/// "light 2 (spot `key`)" for messages.
 pub fn describe(light: &Light, index: usize) -> String {
-    let kind = match light {
-        Light::Point(_) => "point",
-        Light::Area(_) => "polygon",
-    };
-    format!("light {index} ({kind})")
+    light.label(index)
 }
 
 /// Every light's visibility on a whole visible-surface buffer by `method`, each
