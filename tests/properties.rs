@@ -168,9 +168,9 @@ proptest! {
 
 mod bvh {
     use glam::DVec3;
+    use lumiere::scene::ray_queries::SceneRays;
     use lumiere::scene::ray_queries::segment_meets_polygon;
     use lumiere::scene::{Polygon, Vertex};
-    use lumiere::shadow::ray_cast::Occluders;
     use proptest::prelude::*;
 
     fn point() -> impl Strategy<Value = DVec3> {
@@ -204,10 +204,10 @@ mod bvh {
             segments in prop::collection::vec((point(), point()), 40),
         ) {
             let polygons: Vec<Polygon> = triangles.into_iter().filter_map(polygon).collect();
-            let occluders = Occluders::new(&polygons);
+            let occluders = SceneRays::new(&polygons);
             for (a, b) in segments {
                 let brute = polygons.iter().any(|p| segment_meets_polygon(a, b, p));
-                prop_assert_eq!(occluders.blocked(a, b, None), brute);
+                prop_assert_eq!(occluders.any_hit(a, b, &[]), brute);
             }
         }
     }

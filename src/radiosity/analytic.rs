@@ -11,12 +11,12 @@
 
 use super::receivers::Receivers;
 use crate::geometry::lambert_contour::form_factor;
-use crate::shadow::ray_cast::Occluders;
+use crate::scene::ray_queries::SceneRays;
 use glam::DVec3;
 
 pub struct Analytic<'a> {
     /// The scene's polygons, for the occlusion test.
-    pub occluders: Occluders<'a>,
+    pub occluders: SceneRays<'a>,
 }
 
 impl Analytic<'_> {
@@ -47,7 +47,7 @@ impl Analytic<'_> {
         let (mut seen, mut count) = (0, 0);
         for target in targets {
             count += 1;
-            if !self.occluders.blocked(from, target, None) {
+            if !self.occluders.any_hit(from, target, &[]) {
                 seen += 1;
             }
         }

@@ -7,7 +7,7 @@ use super::mesh::Mesh;
 use super::nusselt::Nusselt;
 use super::receivers::Receivers;
 use crate::scene::Scene;
-use crate::shadow::ray_cast::Occluders;
+use crate::scene::ray_queries::SceneRays;
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -28,7 +28,7 @@ impl<'a> Estimator<'a> {
             FormFactorMethod::Hemicube => Estimator::Hemicube(Hemicube::new(resolution)),
             FormFactorMethod::Nusselt => Estimator::Nusselt(Nusselt { resolution }),
             FormFactorMethod::Analytic => Estimator::Analytic(Analytic {
-                occluders: Occluders::new(&scene.polygons),
+                occluders: SceneRays::new(&scene.polygons),
             }),
         }
     }

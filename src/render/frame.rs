@@ -34,12 +34,21 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
         .map(|s| s.as_ref().map(|s| s.frame(scene, &view)))
         .collect();
     let shadowed = frames.iter().any(Option::is_some);
-    let shading = FrameShading::new(
-        scene,
-        &view,
-        direct.clone(),
-        integrator.gouraud_per_light(scene, shadowed),
-    );
+    let shading = FrameShading::new(scene, &view, direct.clone());
+    // Gouraud light by light: each direct light's vertex radiance drawn on its own.
+    let per_light: Vec<Option<_>> = if integrator.gouraud_per_light(scene, shadowed) {
+        (0..scene.lights.len())
+            .map(|l| {
+                direct[l].then(|| {
+                    let polygons = integrator.light_draw_list(scene, &view, l);
+                    let table = EdgeTable::build(&polygons, view.height);
+                    (polygons, table)
+                })
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
 
     let n = scene.render.supersample;
     let (width, height) = (scene.camera.width, scene.camera.height);
@@ -63,7 +72,21 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
             visibility.per_light.push(v);
             counts.push(c);
         }
-        let radiance = integrator.shade_band(&shading, scene, &band, &visibility);
+        let gouraud: Vec<Vec<glam::Vec3>> = per_light
+            .iter()
+            .map(|drawn| match drawn {
+                Some((polygons, table)) => {
+                    let rows = band.rows();
+                    rasterize_rows(polygons, table, view.width, rows, gradients.clone())
+                        .samples
+                        .iter()
+                        .map(|s| s.color)
+                        .collect()
+                }
+                None => Vec::new(),
+            })
+            .collect();
+        let radiance = integrator.shade_band(&shading, scene, &band, &visibility, &gouraud);
         buffers.add_band(&band, &visibility, &counts, &integrator, scene);
         let pixels_of_band = Image {
             width: view.width,

@@ -14,8 +14,8 @@
 
 use crate::radiosity::{Solution, display};
 use crate::raster::{ScreenPolygon, ToPrepare, View, Visibility, VisibleSurface, prepare};
-use crate::scene::{Light, Scene};
-use crate::shading::{FrameShading, vertex_colors};
+use crate::scene::{Light, Scene, ShadingMode};
+use crate::shading::{FrameShading, radiance_at, vertex_colors};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -48,11 +48,55 @@ impl Integrator {
             .collect()
     }
 
-    /// Whether Gouraud shading must interpolate each direct light on its own.
+    /// Whether Gouraud shading must interpolate each direct light on its own: when
+    /// lights are weighted differently, or when the samples' interpolated colour is
+    /// not the lights' (under radiosity it is the solution's).
     pub fn gouraud_per_light(&self, scene: &Scene, shadowed: bool) -> bool {
+        let gouraud =
+            (0..scene.polygons.len()).any(|p| scene.shading_of(p) == ShadingMode::Gouraud);
+        let direct = self.direct_lights(scene);
+        gouraud
+            && match self {
+                Integrator::Direct => shadowed && scene.lights.len() > 1,
+                Integrator::Radiosity(_) => direct.iter().any(|&d| d),
+            }
+    }
+
+    /// The drawn polygons again, coloured by light `l`'s unshadowed vertex radiance
+    /// alone (for Gouraud shading light by light).
+    pub fn light_draw_list(&self, scene: &Scene, view: &View, l: usize) -> Vec<ScreenPolygon> {
+        let only: Vec<bool> = (0..scene.lights.len()).map(|m| m == l).collect();
         match self {
-            Integrator::Direct => shadowed && scene.lights.len() > 1,
-            Integrator::Radiosity(_) => true,
+            Integrator::Direct => self.draw_list(scene, view, &only),
+            Integrator::Radiosity(solution) => {
+                let pieces =
+                    display::element_polygons(&solution.mesh, &solution.elements, solution.display);
+                let colors: Vec<Vec<Vec3>> = pieces
+                    .par_iter()
+                    .map(|piece| {
+                        let polygon = &scene.polygons[piece.polygon];
+                        piece
+                            .vertices
+                            .iter()
+                            .map(|v| radiance_at(scene, polygon, v.position, v.normal, view.eye, l))
+                            .collect()
+                    })
+                    .collect();
+                prepare(
+                    view,
+                    pieces
+                        .iter()
+                        .zip(&colors)
+                        .enumerate()
+                        .map(|(e, (piece, c))| ToPrepare {
+                            id: piece.polygon as u32,
+                            element: e as u32,
+                            vertices: &piece.vertices,
+                            colors: c,
+                            affine_uv: false,
+                        }),
+                )
+            }
         }
     }
 
@@ -102,9 +146,10 @@ impl Integrator {
         scene: &Scene,
         band: &VisibleSurface,
         visibility: &Visibility,
+        gouraud: &[Vec<Vec3>],
     ) -> Vec<Vec3> {
         match self {
-            Integrator::Direct => shading.shade_band(band, visibility),
+            Integrator::Direct => shading.shade_band(band, visibility, gouraud),
             Integrator::Radiosity(_) => (0..band.samples.len())
                 .into_par_iter()
                 .map(|k| {
@@ -122,7 +167,7 @@ impl Integrator {
                         Some(scale) => emitted + (s.color - emitted) * scale,
                         None => s.color,
                     };
-                    solved + shading.lit(band, k, visibility)
+                    solved + shading.lit(band, k, visibility, gouraud)
                 })
                 .collect(),
         }

@@ -9,4 +9,4 @@ mod pass;
 pub mod sphere_form_factor;
 mod textured;
 
-pub use pass::{FrameShading, POST_PASS_SHADE, vertex_colors};
+pub use pass::{FrameShading, POST_PASS_SHADE, radiance_at, vertex_colors};

@@ -5,9 +5,9 @@
 //! one-sided for emission (an emitter shows its radiance from the front only).
 //! Flat: one radiance per polygon and light, at its centroid with its geometric
 //! normal. Gouraud: radiance at the vertices, interpolated by the scan-line pass; with
-//! several lights, each light's vertex radiance is interpolated on its own (by the
-//! same screen-space planes the scan-line pass steps) so that each is weighted by its
-//! own visibility. Phong: the light model at every sample with the interpolated
+//! several lights weighted differently, each light's vertex radiance is interpolated
+//! on its own (by the same scan-line pass, once per light) so that each is weighted by
+//! its own visibility. Phong: the light model at every sample with the interpolated
 //! normal.
 //!
 //! A light's weight at a sample is its visibility: the fraction a method found, or,
@@ -22,9 +22,7 @@ use super::light_model::{SurfacePoint, reflected};
 use super::textured::{polygon_tangents, textured_point};
 use crate::geometry::lambert_contour::projected_solid_angle;
 use crate::geometry::polygon::centroid;
-use crate::raster::{
-    DepthPlane, LightVisibility, ToPrepare, View, Visibility, VisiblePart, VisibleSurface, prepare,
-};
+use crate::raster::{LightVisibility, View, Visibility, VisiblePart, VisibleSurface};
 use crate::scene::{Light, Polygon, Scene, ShadingMode, Vertex};
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
@@ -40,41 +38,12 @@ pub struct FrameShading<'a> {
     direct: Vec<bool>,
     /// Per flat-shaded polygon, its radiance from each light.
     flat: Vec<Option<Vec<Vec3>>>,
-    /// Per Gouraud-shaded polygon, each light's interpolated vertex radiance
-    /// (only when several lights may be weighted differently).
-    gouraud: Vec<Option<Vec<ColourPlanes>>>,
     tangents: Vec<Option<Vec<[DVec3; 2]>>>,
 }
 
-/// A colour interpolated across a polygon's screen image as the scan-line pass does
-/// it: each channel over z and ζ = 1/z are affine in screen space.
-#[derive(Clone, Copy, Debug)]
-struct ColourPlanes {
-    zeta: DepthPlane,
-    over_z: [DepthPlane; 3],
-}
-
-impl ColourPlanes {
-    fn at(&self, x: f64, y: f64) -> Vec3 {
-        let z = 1.0 / self.zeta.zeta(x, y);
-        Vec3::new(
-            (self.over_z[0].zeta(x, y) * z) as f32,
-            (self.over_z[1].zeta(x, y) * z) as f32,
-            (self.over_z[2].zeta(x, y) * z) as f32,
-        )
-    }
-}
-
 impl<'a> FrameShading<'a> {
-    /// `direct[l]`: whether this pass adds light l; `gouraud_per_light`: whether
-    /// Gouraud-shaded polygons interpolate each light on its own (when lights are
-    /// weighted differently, or the interpolated colour is not the lights').
-    pub fn new(
-        scene: &'a Scene,
-        view: &'a View,
-        direct: Vec<bool>,
-        gouraud_per_light: bool,
-    ) -> Self {
+    /// `direct[l]`: whether this pass adds light l.
+    pub fn new(scene: &'a Scene, view: &'a View, direct: Vec<bool>) -> Self {
         let lights = scene.lights.len();
         let flat = scene
             .polygons
@@ -89,23 +58,25 @@ impl<'a> FrameShading<'a> {
                 })
             })
             .collect();
-        let gouraud = if gouraud_per_light {
-            gouraud_planes(scene, view)
-        } else {
-            Vec::new()
-        };
         FrameShading {
             scene,
             view,
             direct,
             flat,
-            gouraud,
             tangents: polygon_tangents(scene),
         }
     }
 
     /// The radiance of every sample of `band`: emission and every light this pass adds.
-    pub fn shade_band(&self, band: &VisibleSurface, visibility: &Visibility) -> Vec<Vec3> {
+    /// `gouraud[l]`: light l's vertex radiance as the scan-line pass interpolated it
+    /// over Gouraud-shaded polygons, when lights are interpolated one by one (empty
+    /// when the interpolated total, the samples' own colour, serves).
+    pub fn shade_band(
+        &self,
+        band: &VisibleSurface,
+        visibility: &Visibility,
+        gouraud: &[Vec<Vec3>],
+    ) -> Vec<Vec3> {
         let scene = self.scene;
         (0..band.samples.len())
             .into_par_iter()
@@ -120,7 +91,7 @@ impl<'a> FrameShading<'a> {
                 } else {
                     Vec3::ZERO
                 };
-                emitted + self.lit(band, k, visibility)
+                emitted + self.lit(band, k, visibility, gouraud)
             })
             .collect()
     }
@@ -133,8 +104,14 @@ impl<'a> FrameShading<'a> {
     }
 
     /// The radiance the lights this pass adds reflect towards the eye at sample `k`,
-    /// each weighted by its visibility.
-    pub fn lit(&self, band: &VisibleSurface, k: usize, visibility: &Visibility) -> Vec3 {
+    /// each weighted by its visibility (`gouraud` as for `shade_band`).
+    pub fn lit(
+        &self,
+        band: &VisibleSurface,
+        k: usize,
+        visibility: &Visibility,
+        gouraud: &[Vec<Vec3>],
+    ) -> Vec3 {
         let scene = self.scene;
         let s = &band.samples[k];
         let id = s.polygon as usize;
@@ -150,25 +127,19 @@ impl<'a> FrameShading<'a> {
                     .map(|l| flat[l] * weight(l))
                     .sum()
             }
-            ShadingMode::Gouraud => match self.gouraud.get(id).and_then(Option::as_ref) {
-                Some(planes) => {
-                    let (x, y) = band.position_of(k);
-                    let (x, y) = (x as f64 + 0.5, y as f64 + 0.5);
-                    lights
-                        .filter(|&l| self.direct[l])
-                        .map(|l| planes[l].at(x, y) * weight(l))
-                        .sum()
-                }
-                // One light (or none shadowed): the interpolated total.
-                None => {
-                    s.color
-                        * if scene.lights.is_empty() {
-                            1.0
-                        } else {
-                            weight(0)
-                        }
-                }
-            },
+            // One light, or none shadowed: the interpolated total.
+            ShadingMode::Gouraud if gouraud.is_empty() => {
+                s.color
+                    * if scene.lights.is_empty() {
+                        1.0
+                    } else {
+                        weight(0)
+                    }
+            }
+            ShadingMode::Gouraud => lights
+                .filter(|&l| self.direct[l])
+                .map(|l| gouraud[l][k] * weight(l))
+                .sum(),
             ShadingMode::Phong => {
                 let material = scene.material_of(id);
                 let (reflectance, n) = if material.is_textured() {
@@ -246,8 +217,8 @@ impl<'a> FrameShading<'a> {
     }
 }
 
-/// Unshadowed radiance leaving a point towards the eye, from light `l`.
-fn radiance_at(
+/// Unshadowed radiance leaving a point of `polygon` towards the eye, from light `l`.
+pub fn radiance_at(
     scene: &Scene,
     polygon: &Polygon,
     position: DVec3,
@@ -289,43 +260,6 @@ pub fn vertex_colors(scene: &Scene, view: &View, direct: &[bool]) -> Vec<Vec<Vec
                         .filter(|&l| direct[l])
                         .map(|l| radiance_at(scene, p, v.position, v.normal, view.eye, l))
                         .sum()
-                })
-                .collect()
-        })
-        .collect()
-}
-
-/// Per Gouraud-shaded polygon in view, per light, its vertex radiance as screen
-/// planes.
-fn gouraud_planes(scene: &Scene, view: &View) -> Vec<Option<Vec<ColourPlanes>>> {
-    scene
-        .polygons
-        .par_iter()
-        .enumerate()
-        .map(|(id, p)| {
-            if scene.shading_of(id) != ShadingMode::Gouraud {
-                return None;
-            }
-            (0..scene.lights.len())
-                .map(|l| {
-                    let colors: Vec<Vec3> = p
-                        .vertices
-                        .iter()
-                        .map(|v| radiance_at(scene, p, v.position, v.normal, view.eye, l))
-                        .collect();
-                    let to_prepare = ToPrepare {
-                        id: id as u32,
-                        element: id as u32,
-                        vertices: &p.vertices,
-                        colors: &colors,
-                        affine_uv: false,
-                    };
-                    let screen = prepare(view, std::iter::once(to_prepare)).pop()?;
-                    Some(ColourPlanes {
-                        zeta: screen.plane,
-                        over_z: [8, 9, 10]
-                            .map(|a| DepthPlane::fit(&screen.vertices, |v| v.attributes_over_z[a])),
-                    })
                 })
                 .collect()
         })

@@ -34,7 +34,7 @@ use rayon::prelude::*;
 use std::sync::Arc;
 
 pub use crate::settings::ShadowMethod;
-pub use ray_cast::{Occluders, SceneOccluders};
+pub use ray_cast::SceneOccluders;
 
 /// A shadow method asked for a light it cannot handle.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -18,25 +18,9 @@ use crate::geometry::bvh::Aabb;
 use crate::geometry::sampling::Stream;
 use crate::raster::{NO_POLYGON, View, VisibleSurface};
 use crate::scene::ray_queries::SceneRays;
-use crate::scene::{Light, Polygon, Scene};
-use glam::DVec3;
+use crate::scene::{Light, Scene};
 use rayon::prelude::*;
 use std::sync::Arc;
-
-/// The scene's polygons in a hierarchy, ready for segment queries.
-pub struct Occluders<'a>(SceneRays<'a>);
-
-impl<'a> Occluders<'a> {
-    pub fn new(polygons: &'a [Polygon]) -> Occluders<'a> {
-        Occluders(SceneRays::new(polygons))
-    }
-
-    /// Whether a polygon other than `receiver` meets the segment strictly between
-    /// `from` and `to`.
-    pub fn blocked(&self, from: DVec3, to: DVec3, receiver: Option<u32>) -> bool {
-        self.0.any_hit(from, to, receiver.as_slice())
-    }
-}
 
 /// The scene's polygons and their hierarchy, owned, so that a renderer can keep them
 /// between frames and share them between lights.

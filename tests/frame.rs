@@ -1,0 +1,354 @@
+//! The frame: bands, threads, the renderer's kept work, buffers, per-light weights
+//! and the radiosity integrator's lights.
+
+use lumiere::output::{BufferData, Image};
+use lumiere::raster::NO_POLYGON;
+use lumiere::render::{Prepasses, Renderer, available_buffers, visible_surface};
+use lumiere::scene::{Light, Scene};
+use lumiere::shadow::ShadowMethod;
+use lumiere::{load_scene, render};
+
+fn scene(id: &str, sets: &[&str]) -> Scene {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    load_scene(id, &sets).unwrap()
+}
+
+fn with_bands(scene: &Scene, rows: u32) -> Image {
+    let mut scene = scene.clone();
+    scene.render.band_rows = rows;
+    render(&scene).unwrap()
+}
+
+fn on_threads(threads: usize, f: impl FnOnce() -> Image + Send) -> Image {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+/// Bit for bit: the image's floats, not their rounding to 8 bits.
+fn assert_same(a: &Image, b: &Image, what: &str) {
+    assert_eq!((a.width, a.height), (b.width, b.height), "{what}");
+    let differing = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(p, q)| p.to_array().map(f32::to_bits) != q.to_array().map(f32::to_bits))
+        .count();
+    assert_eq!(differing, 0, "{what}: {differing} pixels differ");
+}
+
+/// Every shadow method, a soft-shadowed area light, textures, several shading modes
+/// and a radiosity solution give the same bytes whether the frame is made in bands
+/// of 1, 7 or 64 rows or whole, on one thread or four.
+#[test]
+fn bands_and_threads_do_not_change_a_single_bit() {
+    let small = [
+        "camera.width=40",
+        "camera.height=30",
+        "render.supersample=2",
+    ];
+    let mut cases: Vec<(String, Scene)> = Vec::new();
+    for method in [
+        "ray-cast",
+        "scanline",
+        "shadow-polygons",
+        "shadow-map",
+        "shadow-volumes",
+    ] {
+        let set = format!("shadows.method=\"{method}\"");
+        let mut sets = small.to_vec();
+        sets.push(&set);
+        cases.push((method.into(), scene("cornell-box-point", &sets)));
+    }
+    let mut soft = small.to_vec();
+    soft.extend(["shadows.method=\"ray-cast\"", "shadows.light_samples=3"]);
+    cases.push(("soft".into(), scene("cornell-box", &soft)));
+    cases.push(("mip-mapping".into(), scene("mip-mapping", &small)));
+    cases.push(("shading-modes".into(), scene("shading-modes", &small)));
+    cases.push((
+        "radiosity".into(),
+        scene(
+            "radiosity-shooting",
+            &[&small[..], &["radiosity.max_steps=20"]].concat(),
+        ),
+    ));
+    for (name, scene) in &cases {
+        let whole = with_bands(scene, scene.camera.height);
+        for rows in [1, 7, 64, 0] {
+            assert_same(
+                &whole,
+                &with_bands(scene, rows),
+                &format!("{name}, bands of {rows}"),
+            );
+        }
+        let one = on_threads(1, || with_bands(scene, 7));
+        let four = on_threads(4, || with_bands(scene, 0));
+        assert_same(&one, &four, &format!("{name}, 1 and 4 threads"));
+    }
+}
+
+/// Rendering twice reuses every pre-pass; a new camera reuses them and gives the same
+/// bytes as a fresh render from there; a moved light redoes its own shadows only.
+#[test]
+fn the_renderer_keeps_view_independent_work() {
+    let sets = ["camera.width=48", "camera.height=48"];
+    for method in [
+        "ray-cast",
+        "scanline",
+        "shadow-polygons",
+        "shadow-map",
+        "shadow-volumes",
+    ] {
+        let set = format!("shadows.method=\"{method}\"");
+        let base = scene("cornell-box-point", &[&sets[..], &[set.as_str()]].concat());
+        let mut renderer = Renderer::new(base.clone());
+        assert_eq!(renderer.prepasses(), Prepasses::default(), "{method}");
+        let first = renderer.render().unwrap();
+        let built = renderer.prepasses();
+        assert_eq!(built.light_shadows, 1, "{method}");
+        assert_eq!(built.occluders, (method == "ray-cast") as usize, "{method}");
+        let again = renderer.render().unwrap();
+        assert_same(&first, &again, method);
+        assert_eq!(renderer.prepasses(), built, "{method}: rendered twice");
+
+        let mut camera = base.camera.clone();
+        camera.eye += glam::DVec3::new(120.0, -40.0, 150.0);
+        camera.look_at += glam::DVec3::new(-30.0, 20.0, 0.0);
+        renderer.set_camera(camera.clone());
+        let moved = renderer.render().unwrap();
+        assert_eq!(renderer.prepasses(), built, "{method}: a new camera");
+        let mut fresh_scene = base.clone();
+        fresh_scene.camera = camera;
+        assert_same(&moved, &render(&fresh_scene).unwrap(), method);
+
+        let Light::Point(mut lamp) = base.lights[0].clone() else {
+            panic!("a point light")
+        };
+        lamp.position.x -= 100.0;
+        renderer.set_light(0, Light::Point(lamp.clone())).unwrap();
+        let relit = renderer.render().unwrap();
+        assert_eq!(
+            renderer.prepasses().light_shadows,
+            2,
+            "{method}: a moved light"
+        );
+        assert_eq!(renderer.prepasses().occluders, built.occluders, "{method}");
+        let mut fresh_scene = renderer.scene().clone();
+        fresh_scene.lights[0] = Light::Point(lamp);
+        assert_same(&relit, &render(&fresh_scene).unwrap(), method);
+    }
+    // A radiosity solution is solved once, whatever the camera.
+    let base = scene(
+        "radiosity-shooting",
+        &[
+            "camera.width=24",
+            "camera.height=24",
+            "radiosity.max_steps=10",
+        ],
+    );
+    let mut renderer = Renderer::new(base.clone());
+    renderer.render().unwrap();
+    let mut camera = base.camera.clone();
+    camera.eye.x += 50.0;
+    renderer.set_camera(camera);
+    renderer.render().unwrap();
+    assert_eq!(renderer.prepasses().radiosity, 1);
+}
+
+/// The buffers are what the passes computed: the polygon ids are the visible-surface
+/// buffer's, a light's visibility is the shadow method's, Crow's counts are the
+/// volumes', the shadow map's faces are its depth images.
+#[test]
+fn buffers_hold_what_the_passes_computed() {
+    let sets = [
+        "camera.width=32",
+        "camera.height=24",
+        "shadows.method=\"shadow-volumes\"",
+    ];
+    let scene = scene("cornell-box-point", &sets);
+    let renderer = Renderer::new(scene.clone());
+    let names: Vec<String> = available_buffers(&renderer)
+        .unwrap()
+        .into_iter()
+        .map(|b| b.name)
+        .collect();
+    for name in [
+        "polygon",
+        "depth",
+        "normal",
+        "uv",
+        "visibility-0",
+        "shadow-volume-counts-0",
+    ] {
+        assert!(names.contains(&name.to_string()), "{name} not in {names:?}");
+    }
+    let rendered = renderer.render_with_buffers(&names).unwrap();
+    let (view, surface) = visible_surface(&scene);
+    let buffer = |name: &str| rendered.buffers.iter().find(|b| b.name == name).unwrap();
+    let BufferData::Ids(ids) = &buffer("polygon").data else {
+        panic!("ids")
+    };
+    let expected: Vec<u32> = surface.samples.iter().map(|s| s.polygon).collect();
+    assert_eq!(ids, &expected);
+    assert!(ids.contains(&NO_POLYGON) || ids.iter().all(|&i| i != NO_POLYGON));
+    let visibility =
+        lumiere::shadow::compute(&scene, &view, &surface, ShadowMethod::ShadowVolumes).unwrap();
+    let BufferData::Values { data, channels: 1 } = &buffer("visibility-0").data else {
+        panic!("values")
+    };
+    for (k, s) in surface.samples.iter().enumerate() {
+        let expected = if s.is_empty() {
+            0.0
+        } else {
+            visibility.fraction(0, k)
+        };
+        assert_eq!(data[k], expected, "sample {k}");
+    }
+    let counts = lumiere::shadow::shadow_volumes::counts(
+        &scene,
+        &view,
+        &surface,
+        match &scene.lights[0] {
+            Light::Point(l) => l.position,
+            _ => unreachable!(),
+        },
+    );
+    assert_eq!(
+        buffer("shadow-volume-counts-0").data,
+        BufferData::Counts(counts)
+    );
+    assert_same(
+        &rendered.image,
+        &render(&scene).unwrap(),
+        "the image beside its buffers",
+    );
+    assert!(
+        renderer
+            .render_with_buffers(&["no-such".to_string()])
+            .is_err()
+    );
+
+    let mut map = scene.clone();
+    map.shadows.method = ShadowMethod::ShadowMap;
+    map.shadows.map_resolution = 64;
+    let renderer = Renderer::new(map);
+    let faces: Vec<String> = ["px", "nx", "py", "ny", "pz", "nz"]
+        .iter()
+        .map(|f| format!("shadow-map-0-{f}"))
+        .collect();
+    let rendered = renderer.render_with_buffers(&faces).unwrap();
+    for b in &rendered.buffers {
+        assert_eq!((b.width, b.height), (64, 64), "{}", b.name);
+        let BufferData::Values { data, .. } = &b.data else {
+            panic!("depths")
+        };
+        // Walls, ceiling and back wall close the light in on four faces; the faces
+        // looking down and to the front see out of the box's open front.
+        let finite = data.iter().filter(|d| d.is_finite()).count();
+        let closed = ["px", "nx", "py", "pz"].iter().any(|f| b.name.ends_with(f));
+        assert_eq!(finite == data.len(), closed, "{}: {finite} finite", b.name);
+        assert!(finite > data.len() / 3, "{}", b.name);
+        assert!(data.iter().all(|d| *d > 0.0), "{}", b.name);
+    }
+}
+
+/// Flat and Gouraud shading weigh each light by its own visibility: where only one
+/// of two lights is shadowed, the other's light is all that is left, and a shadowed
+/// light no longer dims an unshadowed one.
+#[test]
+fn each_light_is_weighed_by_its_own_visibility() {
+    for shading in ["flat", "gouraud", "phong"] {
+        let set = format!("render.shading=\"{shading}\"");
+        let sets = [
+            "camera.width=48",
+            "camera.height=48",
+            "shadows.method=\"ray-cast\"",
+            set.as_str(),
+        ];
+        let mut both = scene("cornell-box-point", &sets);
+        let Light::Point(lamp) = both.lights[0].clone() else {
+            panic!("a point light")
+        };
+        let mut second = lamp.clone();
+        second.position = glam::DVec3::new(450.0, 300.0, 150.0);
+        second.intensity *= 0.5;
+        both.lights.push(Light::Point(second.clone()));
+        let mut only_second = both.clone();
+        only_second.lights = vec![Light::Point(second)];
+        let mut only_first = both.clone();
+        only_first.lights = vec![Light::Point(lamp)];
+        let (a, b, ab) = (
+            render(&only_first).unwrap(),
+            render(&only_second).unwrap(),
+            render(&both).unwrap(),
+        );
+        // Per pixel, both lights' image is the sum of each light's image.
+        let worst = ab
+            .pixels
+            .iter()
+            .zip(a.pixels.iter().zip(&b.pixels))
+            .map(|(s, (p, q))| {
+                ((*s - (*p + *q)).abs() / (p.max_element() + q.max_element()).max(1e-3))
+                    .max_element()
+            })
+            .fold(0.0f32, f32::max);
+        assert!(worst < 1e-4, "{shading}: sum differs by {worst}");
+    }
+}
+
+/// The radiosity integrator adds the lights its solution does not hold (a point
+/// light here) directly, with their shadows: the image with the point light is the
+/// image without it plus the point light's direct light alone.
+#[test]
+fn radiosity_takes_point_lights_and_their_shadows() {
+    let sets = [
+        "camera.width=32",
+        "camera.height=32",
+        "radiosity.max_steps=30",
+        "shadows.method=\"ray-cast\"",
+    ];
+    let base = scene("radiosity-shooting", &sets);
+    let lamp = scene(
+        "cornell-box-point",
+        &["camera.width=32", "camera.height=32"],
+    )
+    .lights[0]
+        .clone();
+    let mut with_lamp = base.clone();
+    with_lamp.lights.push(lamp.clone());
+    let mut lamp_only = base.clone();
+    lamp_only.radiosity = None;
+    lamp_only.lights = vec![lamp];
+    let (solved, both, direct) = (
+        render(&base).unwrap(),
+        render(&with_lamp).unwrap(),
+        render(&lamp_only).unwrap(),
+    );
+    let (view, surface) = visible_surface(&lamp_only);
+    let n = lamp_only.render.supersample;
+    let mut compared = 0;
+    for (i, (b, (s, d))) in both
+        .pixels
+        .iter()
+        .zip(solved.pixels.iter().zip(&direct.pixels))
+        .enumerate()
+    {
+        let (x, y) = (i as u32 % both.width, i as u32 / both.width);
+        let sample = surface.at(x * n, y * n);
+        // Emitters show their emission in the direct image; skip them and the sky.
+        if sample.is_empty() || lamp_only.material_of(sample.polygon as usize).is_emitter() {
+            continue;
+        }
+        let _ = &view;
+        let expected = *s + *d;
+        assert!(
+            (*b - expected).abs().max_element() <= 1e-5 * expected.max_element().max(1.0),
+            "pixel {x},{y}: {b} against {expected}"
+        );
+        compared += 1;
+    }
+    assert!(compared > 500);
+    assert!(direct.pixels.iter().any(|p| p.max_element() > 0.0));
+}

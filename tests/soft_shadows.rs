@@ -1,0 +1,135 @@
+//! Ray casting under an extended light (Cook, Porter & Carpenter 1984) converges to
+//! the exact penumbra as the light samples grow: a square light over a square
+//! occluder, both parallel to the floor, whose visible part of the light is known
+//! exactly at every floor point (the light minus the occluder projected from the
+//! point onto the light's plane, a rectangle), and whose irradiance is Lambert's
+//! contour formula on it.
+
+use glam::DVec3;
+use lumiere::geometry::lambert_contour::projected_solid_angle;
+use lumiere::render::visible_surface;
+use lumiere::shadow::ShadowMethod;
+
+const SCENE: &str = r#"
+[camera]
+eye = [0.3, 1.2, 5.0]
+look_at = [0.0, 0.0, 0.0]
+fov_y = 30.0
+width = 64
+height = 64
+
+[materials.grey]
+diffuse = [0.5, 0.5, 0.5]
+
+[[lights]]
+type = "polygon"
+vertices = [[-0.5, 2.0, -0.5], [0.5, 2.0, -0.5], [0.5, 2.0, 0.5], [-0.5, 2.0, 0.5]]
+radiance = [1.0, 1.0, 1.0]
+
+[[objects]]
+shape = "quad"
+name = "floor"
+material = "grey"
+transform = [{ scale = 6.0 }]
+
+[[objects]]
+shape = "quad"
+name = "occluder"
+material = "grey"
+transform = [{ scale = 0.6 }, { translate = [0.0, 1.0, 0.0] }]
+"#;
+
+const LIGHT_HALF: f64 = 0.5;
+const OCCLUDER_HALF: f64 = 0.3;
+const LIGHT_Y: f64 = 2.0;
+const OCCLUDER_Y: f64 = 1.0;
+
+fn square(x0: f64, x1: f64, z0: f64, z1: f64) -> Vec<DVec3> {
+    vec![
+        DVec3::new(x0, LIGHT_Y, z0),
+        DVec3::new(x1, LIGHT_Y, z0),
+        DVec3::new(x1, LIGHT_Y, z1),
+        DVec3::new(x0, LIGHT_Y, z1),
+    ]
+}
+
+/// The exact share of the light's irradiance reaching floor point `p`.
+fn exact_share(p: DVec3) -> f64 {
+    let n = DVec3::Y;
+    let light = square(-LIGHT_HALF, LIGHT_HALF, -LIGHT_HALF, LIGHT_HALF);
+    let whole = projected_solid_angle(p, n, &light);
+    // The occluder seen from p, on the light's plane: scaled about p.
+    let k = (LIGHT_Y - p.y) / (OCCLUDER_Y - p.y);
+    let project = |o: f64, q: f64| q + (o - q) * k;
+    let (x0, x1) = (
+        project(-OCCLUDER_HALF, p.x).max(-LIGHT_HALF),
+        project(OCCLUDER_HALF, p.x).min(LIGHT_HALF),
+    );
+    let (z0, z1) = (
+        project(-OCCLUDER_HALF, p.z).max(-LIGHT_HALF),
+        project(OCCLUDER_HALF, p.z).min(LIGHT_HALF),
+    );
+    let hidden = if x0 < x1 && z0 < z1 {
+        projected_solid_angle(p, n, &square(x0, x1, z0, z1))
+    } else {
+        0.0
+    };
+    (whole - hidden) / whole
+}
+
+/// RMS error of the ray-cast share against the exact one over the penumbra, and
+/// the largest error in the umbra and in full light.
+fn errors(samples: u32) -> (f64, f64, usize) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("soft.toml");
+    std::fs::write(&path, SCENE).unwrap();
+    let sets = [format!("shadows.light_samples={samples}")];
+    let scene = lumiere::load_scene(path.to_str().unwrap(), &sets).unwrap();
+    let floor = scene
+        .objects
+        .iter()
+        .position(|o| o.name == "floor")
+        .unwrap();
+    let (view, surface) = visible_surface(&scene);
+    let visibility =
+        lumiere::shadow::compute(&scene, &view, &surface, ShadowMethod::RayCast).unwrap();
+    let (mut sum, mut count, mut outside) = (0.0, 0, 0.0f64);
+    for (k, s) in surface.samples.iter().enumerate() {
+        if s.is_empty() || scene.polygons[s.polygon as usize].object != floor {
+            continue;
+        }
+        let exact = exact_share(s.position);
+        let found = visibility.fraction(0, k) as f64;
+        if !(1e-9..=1.0 - 1e-9).contains(&exact) {
+            outside = outside.max((found - exact).abs());
+        } else {
+            sum += (found - exact).powi(2);
+            count += 1;
+        }
+    }
+    ((sum / count as f64).sqrt(), outside, count)
+}
+
+#[test]
+fn the_sampled_penumbra_converges_to_the_exact_one() {
+    let mut previous = f64::INFINITY;
+    let mut table = Vec::new();
+    for n in [1, 2, 4, 8, 16] {
+        let (rms, outside, count) = errors(n);
+        table.push((n, rms));
+        assert!(count > 300, "{count} penumbra samples");
+        // Umbra and full light: every sample ray agrees.
+        assert!(outside < 1e-6, "n = {n}: {outside} outside the penumbra");
+        assert!(
+            rms < previous,
+            "n = {n}: {rms} after {previous} ({table:?})"
+        );
+        previous = rms;
+    }
+    let (_, at_16) = table[4];
+    assert!(at_16 < 0.01, "{table:?}");
+    // Stratified sampling: the error falls faster than 1/N (N × N samples: 1/N²
+    // would be Monte Carlo's 1/sqrt(samples)).
+    let (_, at_2) = table[1];
+    assert!(at_16 < at_2 / 8.0, "{table:?}");
+}
