@@ -832,3 +832,133 @@ fn a_bent_obj_face_is_split_with_a_warning() {
     );
     assert_eq!(run.stderr, "");
 }
+
+/// `--aov list` names the buffers the scene's frame makes, `--aov all -o DIR` writes
+/// each (ids and counts as PNG, values as PFM), `--aov NAME` one, and a name the
+/// frame does not make is one error line listing those it does.
+#[test]
+fn buffers_as_outputs() {
+    let dir = workspace(&[]);
+    let size = ["--width", "24", "--height", "18"];
+    let base = |extra: &[&'static str]| {
+        let mut args = vec!["render", "cornell-box-point"];
+        args.extend(size);
+        args.extend(extra);
+        args
+    };
+    let run = lumiere(
+        &base(&["--shadows", "shadow-volumes", "--aov", "list", "-o", "x"]),
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    for name in [
+        "polygon",
+        "depth",
+        "normal",
+        "uv",
+        "visibility-0",
+        "shadow-volume-counts-0",
+    ] {
+        assert!(
+            run.stdout.lines().any(|l| l.starts_with(name)),
+            "{name}: {}",
+            run.stdout
+        );
+    }
+    let run = lumiere(
+        &base(&["--shadows", "shadow-map", "--aov", "all", "-o", "buffers"]),
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let written = |name: &str| dir.path().join("buffers").join(name);
+    for file in [
+        "polygon.png",
+        "depth.pfm",
+        "normal.pfm",
+        "visibility-0.pfm",
+        "shadow-map-0-py.pfm",
+    ] {
+        assert!(written(file).exists(), "{file}");
+    }
+    let depth = lumiere::output::load(&written("depth.pfm")).unwrap();
+    assert_eq!((depth.width, depth.height), (24, 18));
+    let map = lumiere::output::load(&written("shadow-map-0-py.pfm")).unwrap();
+    assert_eq!((map.width, map.height), (1024, 1024));
+    let run = lumiere(&base(&["--aov", "polygon", "-o", "ids.pfm"]), dir.path());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let ids = lumiere::output::load(&dir.path().join("ids.pfm")).unwrap();
+    // The numbers themselves: polygon ids, -1 where nothing is seen.
+    assert!(ids.pixels.iter().all(|p| p.x == p.x.round() && p.x >= -1.0));
+    let run = lumiere(
+        &base(&["--aov", "shadow-map-0-px", "-o", "m.pfm"]),
+        dir.path(),
+    );
+    assert_clear_error(
+        &run,
+        "no buffer `shadow-map-0-px`; it has: polygon, depth",
+        &dir.path().join("m.pfm"),
+    );
+    let run = lumiere(
+        &[
+            "render",
+            "radiosity-shooting",
+            "--width",
+            "16",
+            "--height",
+            "16",
+            "--steps",
+            "5",
+            "--aov",
+            "list",
+            "-o",
+            "x",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    for name in ["element", "radiosity", "hemicube-top", "hemicube-side1"] {
+        assert!(
+            run.stdout.lines().any(|l| l.starts_with(name)),
+            "{name}: {}",
+            run.stdout
+        );
+    }
+}
+
+/// The quad-lit Cornell box under a point-light method: one line naming both.
+#[test]
+fn a_method_refuses_a_light_it_cannot_shadow() {
+    let dir = workspace(&[]);
+    for method in [
+        "scanline",
+        "shadow-polygons",
+        "shadow-map",
+        "shadow-volumes",
+    ] {
+        let run = lumiere(
+            &["render", "cornell-box", "--shadows", method, "-o", "o.png"],
+            dir.path(),
+        );
+        assert_clear_error(
+            &run,
+            &format!("shadow method `{method}` cannot shadow light 0 (polygon"),
+            &dir.path().join("o.png"),
+        );
+    }
+    let run = lumiere(
+        &[
+            "render",
+            "cornell-box",
+            "--width",
+            "32",
+            "--height",
+            "32",
+            "--shadows",
+            "ray-cast",
+            "-o",
+            "o.png",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+}

@@ -352,3 +352,76 @@ fn radiosity_takes_point_lights_and_their_shadows() {
     assert!(compared > 500);
     assert!(direct.pixels.iter().any(|p| p.max_element() > 0.0));
 }
+
+const TEXTURED_RADIOSITY: &str = r#"
+[camera]
+eye = [0.0, 2.0, 4.0]
+look_at = [0.0, 0.0, 0.0]
+fov_y = 45.0
+width = 32
+height = 32
+
+[textures.half]
+procedural = "checkerboard"
+colors = [[0.5, 0.25, 0.125], [0.5, 0.25, 0.125]]
+
+[materials.floor]
+diffuse = [0.8, 0.8, 0.8]
+diffuse_texture = "half"
+
+[materials.lamp]
+diffuse = [0.0, 0.0, 0.0]
+emission = [4.0, 4.0, 4.0]
+
+[[objects]]
+shape = "quad"
+name = "floor"
+material = "floor"
+transform = [{ scale = 3.0 }]
+
+[[objects]]
+shape = "quad"
+name = "lamp"
+material = "lamp"
+transform = [{ rotate = { axis = [1.0, 0.0, 0.0], degrees = 180.0 } }, { translate = [0.0, 1.5, 0.0] }]
+
+[radiosity]
+solver = "gathering"
+patch_size = 1.0
+"#;
+
+/// Under radiosity a diffuse texture scales the light a surface reflects: with a
+/// constant texture of colour c, the floor shows c times its untextured radiance.
+#[test]
+fn radiosity_takes_textures() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.toml");
+    std::fs::write(&path, TEXTURED_RADIOSITY).unwrap();
+    let textured = load_scene(path.to_str().unwrap(), &[]).unwrap();
+    let mut plain = textured.clone();
+    for m in &mut plain.materials {
+        m.diffuse_texture = None;
+    }
+    let (a, b) = (render(&textured).unwrap(), render(&plain).unwrap());
+    let (_, surface) = visible_surface(&textured);
+    let floor = textured
+        .objects
+        .iter()
+        .position(|o| o.name == "floor")
+        .unwrap();
+    let c = glam::Vec3::new(0.5, 0.25, 0.125);
+    let mut compared = 0;
+    for (k, s) in surface.samples.iter().enumerate() {
+        if s.is_empty() || textured.polygons[s.polygon as usize].object != floor {
+            continue;
+        }
+        let expected = b.pixels[k] * c;
+        assert!(
+            (a.pixels[k] - expected).abs().max_element() <= 1e-5 * expected.max_element(),
+            "sample {k}: {} against {expected}",
+            a.pixels[k]
+        );
+        compared += 1;
+    }
+    assert!(compared > 200, "{compared}");
+}

@@ -109,19 +109,21 @@ pub fn run(args: Args) -> Result<()> {
     }
     sets.extend(radiosity_sets(&args));
     let scene = load_scene(&args.scene, &sets)?;
+    let exposure = scene.render.exposure;
+    let radiosity = scene.radiosity.clone();
+    let mut renderer = Renderer::new(scene);
+    renderer.check()?;
+    let scene = renderer.scene();
     for warning in &scene.warnings {
         eprintln!("warning: {warning}");
     }
     if scene.shadows.method == ShadowMethod::ShadowVolumes {
-        for name in lumiere::shadow::shadow_volumes::open_objects(&scene) {
+        for name in lumiere::shadow::shadow_volumes::open_objects(scene) {
             eprintln!(
                 "warning: object `{name}` is not a closed 2-manifold: its shadow volume may leak light"
             );
         }
     }
-    let exposure = scene.render.exposure;
-    let radiosity = scene.radiosity.clone();
-    let mut renderer = Renderer::new(scene);
     if let Some(settings) = &radiosity {
         let frames = args.frames.map(|dir| super::radiosity::Frames {
             dir,

@@ -10,8 +10,9 @@
 //! neighbours put on its sides, which share their values (no Gouraud cracks).
 
 use super::mesh::Mesh;
-use crate::scene::Vertex;
-use glam::{DVec2, Vec3};
+use crate::scene::ray_queries::interpolate;
+use crate::scene::{Scene, Vertex};
+use glam::Vec3;
 use rayon::prelude::*;
 
 pub use crate::settings::Display;
@@ -38,7 +39,12 @@ pub struct ElementPolygon {
 /// The elements with radiosities `elements`, as the scan-line pass draws them: each
 /// through its outline (with the midpoints finer neighbours put on its sides), its
 /// vertices carrying its polygon's attributes there.
-pub fn element_polygons(mesh: &Mesh, elements: &[Vec3], display: Display) -> Vec<ElementPolygon> {
+pub fn element_polygons(
+    scene: &Scene,
+    mesh: &Mesh,
+    elements: &[Vec3],
+    display: Display,
+) -> Vec<ElementPolygon> {
     let at_vertices = vertex_radiosities(mesh, elements);
     let to_radiance = 1.0 / std::f32::consts::PI;
     mesh.elements
@@ -47,12 +53,17 @@ pub fn element_polygons(mesh: &Mesh, elements: &[Vec3], display: Display) -> Vec
         .map(|(e, element)| {
             let patch = &mesh.patches[element.patch];
             let outline = mesh.outline(e);
+            let polygon = &scene.polygons[patch.polygon];
             let vertices = outline
                 .iter()
-                .map(|&v| Vertex {
-                    position: mesh.vertices[v as usize],
-                    normal: patch.normal,
-                    uv: DVec2::ZERO,
+                .map(|&v| {
+                    let position = mesh.vertices[v as usize];
+                    let (normal, uv) = interpolate(polygon, position);
+                    Vertex {
+                        position,
+                        normal,
+                        uv,
+                    }
                 })
                 .collect();
             let colors = outline

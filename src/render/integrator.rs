@@ -35,17 +35,9 @@ impl Integrator {
         }
     }
 
-    /// Per light, whether shading adds it directly (and so whether it is shadowed):
-    /// under radiosity, polygon lights are emitters of the solution already.
+    /// Per light, whether shading adds it directly (and so whether it is shadowed).
     pub fn direct_lights(&self, scene: &Scene) -> Vec<bool> {
-        scene
-            .lights
-            .iter()
-            .map(|light| match self {
-                Integrator::Direct => true,
-                Integrator::Radiosity(_) => !matches!(light, Light::Polygon(_)),
-            })
-            .collect()
+        lit_directly(scene, matches!(self, Integrator::Radiosity(_)))
     }
 
     /// Whether Gouraud shading must interpolate each direct light on its own: when
@@ -69,8 +61,12 @@ impl Integrator {
         match self {
             Integrator::Direct => self.draw_list(scene, view, &only),
             Integrator::Radiosity(solution) => {
-                let pieces =
-                    display::element_polygons(&solution.mesh, &solution.elements, solution.display);
+                let pieces = display::element_polygons(
+                    scene,
+                    &solution.mesh,
+                    &solution.elements,
+                    solution.display,
+                );
                 let colors: Vec<Vec<Vec3>> = pieces
                     .par_iter()
                     .map(|piece| {
@@ -123,8 +119,12 @@ impl Integrator {
                 )
             }
             Integrator::Radiosity(solution) => {
-                let pieces =
-                    display::element_polygons(&solution.mesh, &solution.elements, solution.display);
+                let pieces = display::element_polygons(
+                    scene,
+                    &solution.mesh,
+                    &solution.elements,
+                    solution.display,
+                );
                 prepare(
                     view,
                     pieces.iter().enumerate().map(|(e, piece)| ToPrepare {
@@ -172,4 +172,14 @@ impl Integrator {
                 .collect(),
         }
     }
+}
+
+/// Per light, whether shading adds it directly: every light, but under radiosity
+/// the polygon lights, which are emitters of the solution already.
+pub fn lit_directly(scene: &Scene, radiosity: bool) -> Vec<bool> {
+    scene
+        .lights
+        .iter()
+        .map(|light| !(radiosity && matches!(light, Light::Polygon(_))))
+        .collect()
 }

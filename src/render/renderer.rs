@@ -7,7 +7,7 @@
 //! shadows; changing the shadow settings, every light's shadows.
 
 use super::frame::render_frame;
-use super::integrator::Integrator;
+use super::integrator::{Integrator, lit_directly};
 use crate::output::{Buffer, Image};
 use crate::radiosity::{self, Solution};
 use crate::scene::{Camera, Light, Scene};
@@ -104,6 +104,16 @@ impl Renderer {
     /// progress shown, say), so that it is not solved again.
     pub fn set_radiosity_solution(&mut self, solution: Arc<Solution>) {
         *self.radiosity.lock().expect("no poisoned lock") = Some(solution);
+    }
+
+    /// Refuses, before any work, a shadow method that cannot shadow one of the
+    /// lights the frame shadows.
+    pub fn check(&self) -> Result<()> {
+        let direct = lit_directly(&self.scene, self.scene.radiosity.is_some());
+        for (index, _) in direct.iter().enumerate().filter(|(_, d)| **d) {
+            shadow::check(&self.scene, index, self.scene.shadows.method)?;
+        }
+        Ok(())
     }
 
     /// The frame's linear radiance image.

@@ -96,6 +96,19 @@ pub trait SharedWork {
     fn occluders(&self) -> Arc<SceneOccluders>;
 }
 
+/// Whether `method` can shadow light `index` of `scene` (before any work is done).
+pub fn check(scene: &Scene, index: usize, method: ShadowMethod) -> Result<(), Unsupported> {
+    let light = &scene.lights[index];
+    match method {
+        ShadowMethod::None | ShadowMethod::RayCast => Ok(()),
+        _ if point_position(light).is_some() => Ok(()),
+        _ => Err(Unsupported {
+            method,
+            light: describe(light, index),
+        }),
+    }
+}
+
 /// Builds `method`'s pre-pass for light `index` of `scene`; `None` when the method
 /// casts no shadows.
 pub fn prepare(
@@ -117,12 +130,8 @@ pub fn prepare(
             settings.light_samples,
         ))));
     }
-    let Some(at) = point_position(light) else {
-        return Err(Unsupported {
-            method,
-            light: describe(light, index),
-        });
-    };
+    check(scene, index, method)?;
+    let at = point_position(light).expect("checked");
     Ok(Some(match method {
         ShadowMethod::None | ShadowMethod::RayCast => unreachable!("handled above"),
         ShadowMethod::Scanline => Arc::new(scanline_shadows::ScanlineShadows::new(scene, at, true)),
