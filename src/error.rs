@@ -271,3 +271,123 @@ fn did_you_mean(suggestion: &Option<String>) -> String {
 fn gib(bytes: u64) -> f64 {
     bytes as f64 / (1u64 << 30) as f64
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{load_scene, output, render};
+
+    /// The message and its causes joined by ": ", as the command line prints them.
+    fn line(e: &Error) -> String {
+        let mut text = e.to_string();
+        let mut cause = std::error::Error::source(e);
+        while let Some(c) = cause {
+            text += &format!(": {c}");
+            cause = c.source();
+        }
+        text
+    }
+
+    fn sets(extra: &[&str]) -> Vec<String> {
+        ["camera.width=8", "camera.height=8"]
+            .iter()
+            .chain(extra)
+            .map(|s| s.to_string())
+            .collect()
+    }
+
+    #[test]
+    fn a_missing_scene_file_is_an_io_error_naming_it() {
+        let e = load_scene("no-such-scene.toml", &[]).err().unwrap();
+        match &e {
+            Error::Io {
+                op: FileOp::ReadScene,
+                path,
+                source,
+            } => {
+                assert_eq!(path, Path::new("no-such-scene.toml"));
+                assert_eq!(source.kind(), std::io::ErrorKind::NotFound);
+            }
+            other => panic!("not Io: {other:?}"),
+        }
+        assert!(
+            line(&e).starts_with("cannot read scene no-such-scene.toml: "),
+            "{}",
+            line(&e)
+        );
+        let e = output::load(Path::new("no-such-image.png")).err().unwrap();
+        assert!(
+            matches!(&e, Error::Io { op: FileOp::Read, path, .. } if path == Path::new("no-such-image.png"))
+        );
+    }
+
+    #[test]
+    fn a_hard_shadow_method_refuses_a_polygon_light() {
+        let scene = load_scene("cornell-box", &sets(&["shadows.method=shadow-map"])).unwrap();
+        match render(&scene).err().unwrap() {
+            Error::Unsupported(u) => {
+                assert_eq!(u.method, shadow::ShadowMethod::ShadowMap);
+                assert!(u.light.contains("polygon"), "{}", u.light);
+            }
+            other => panic!("not Unsupported: {other:?}"),
+        }
+    }
+
+    /// A bad value inside a scene: the wrappers name the scene and the light, the
+    /// root names the key, and the line reads as the context chain did.
+    #[test]
+    fn a_bad_value_names_the_scene_the_place_and_the_key() {
+        let e = load_scene("cornell-box", &sets(&["radiosity.tolerance=2.0"]))
+            .err()
+            .unwrap();
+        assert!(matches!(&e, Error::InScene { spec, .. } if spec == "cornell-box"));
+        assert!(
+            matches!(e.root(), Error::Invalid { key, .. } if key == "radiosity.tolerance"),
+            "{e:?}"
+        );
+        assert_eq!(
+            line(&e),
+            "scene cornell-box: radiosity.tolerance must be between 0 and 1, got 2"
+        );
+
+        let bulb = "lights=[{type = 'sphere', name = 'bulb', centre = [0.0, 0.0, 0.0], \
+                    radius = 0.0, radiance = [1.0, 1.0, 1.0]}]";
+        let e = load_scene("cornell-box-point", &sets(&[bulb]))
+            .err()
+            .unwrap();
+        assert_eq!(
+            line(&e),
+            "scene cornell-box-point: lights[0] (`bulb`): radius must be a positive number, got 0"
+        );
+        let Error::InScene { source, .. } = &e else {
+            panic!("not InScene: {e:?}")
+        };
+        assert!(matches!(&**source, Error::In { place, .. } if place == "lights[0] (`bulb`)"));
+        assert!(matches!(e.root(), Error::Invalid { key, .. } if key == "radius"));
+    }
+
+    #[test]
+    fn an_unknown_entry_suggests_the_nearest() {
+        match load_scene("cornel-box", &[]).err().unwrap() {
+            Error::UnknownEntry { id, suggestion } => {
+                assert_eq!(id, "cornel-box");
+                assert_eq!(suggestion.as_deref(), Some("cornell-box"));
+            }
+            other => panic!("not UnknownEntry: {other:?}"),
+        }
+    }
+
+    /// The image crate's errors carry their cause twice (message and source): it is
+    /// said once.
+    #[test]
+    fn an_undecodable_image_says_its_cause_once() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("broken.exr");
+        std::fs::write(&path, "not an image").unwrap();
+        let e = output::load(&path).err().unwrap();
+        assert!(matches!(&e, Error::Image { path: Some(p), .. } if *p == path));
+        let text = line(&e);
+        let cause = text.rsplit(": ").next().unwrap();
+        assert_eq!(text.matches(cause).count(), 1, "{text}");
+    }
+}
