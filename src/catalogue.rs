@@ -5,7 +5,7 @@
 
 use crate::scene::resources::Embedded;
 use crate::scene::tables;
-use anyhow::{Result, anyhow, bail};
+use crate::{Error, Result};
 use include_dir::{Dir, include_dir};
 use serde::{Deserialize, Serialize};
 
@@ -68,25 +68,28 @@ pub fn entry(id: &str) -> Result<Entry> {
 
 fn entry_from(id: &str, chain: &mut Vec<String>) -> Result<Entry> {
     if chain.iter().any(|c| c == id) {
-        bail!(
+        return Err(Error::Catalogue(format!(
             "catalogue entries extend each other in a cycle: {} -> {id}",
             chain.join(" -> ")
-        );
+        )));
     }
     chain.push(id.to_string());
     let name = format!("{id}.toml");
     let file = ALGORITHMS.get_file(&name).ok_or_else(|| unknown(id))?;
     let text = file
         .contents_utf8()
-        .ok_or_else(|| anyhow!("{name} is not UTF-8"))?;
+        .ok_or_else(|| Error::Catalogue(format!("{name} is not UTF-8")))?;
     let mut table = tables::parse(text, &format!("algorithms/{name}"))?;
     let algorithm: Algorithm = table
         .remove("algorithm")
-        .ok_or_else(|| anyhow!("algorithms/{name}: no [algorithm] table"))?
+        .ok_or_else(|| Error::Catalogue(format!("algorithms/{name}: no [algorithm] table")))?
         .try_into()
-        .map_err(|e| anyhow!("algorithms/{name}: [algorithm]: {e}"))?;
+        .map_err(|e| Error::Catalogue(format!("algorithms/{name}: [algorithm]: {e}")))?;
     if algorithm.id != id {
-        bail!("algorithms/{name}: [algorithm] id is `{}`", algorithm.id);
+        return Err(Error::Catalogue(format!(
+            "algorithms/{name}: [algorithm] id is `{}`",
+            algorithm.id
+        )));
     }
     let scene = match &algorithm.extends {
         Some(base) => {
@@ -99,16 +102,14 @@ fn entry_from(id: &str, chain: &mut Vec<String>) -> Result<Entry> {
     Ok(Entry { algorithm, scene })
 }
 
-fn unknown(id: &str) -> anyhow::Error {
+fn unknown(id: &str) -> Error {
     let known = ids();
     let nearest = known
         .iter()
         .min_by_key(|k| strsim::levenshtein(k, id))
         .filter(|k| strsim::levenshtein(k, id) <= k.len().max(id.len()) / 2);
-    match nearest {
-        Some(n) => anyhow!(
-            "no catalogue entry `{id}`; did you mean `{n}`? (`lumiere list` shows them all)"
-        ),
-        None => anyhow!("no catalogue entry `{id}` (`lumiere list` shows them all)"),
+    Error::UnknownEntry {
+        id: id.to_string(),
+        suggestion: nearest.cloned(),
     }
 }

@@ -8,6 +8,7 @@
 //! (`output`), saved as sRGB PNG or linear PFM or EXR.
 
 pub mod catalogue;
+mod error;
 pub mod geometry;
 pub mod output;
 pub mod radiosity;
@@ -19,10 +20,10 @@ pub mod shading;
 pub mod shadow;
 pub mod texture;
 
-use anyhow::{Context, Result};
 use scene::resources::{Directory, Layered};
 use std::path::Path;
 
+pub use error::{Error, FileOp, Result};
 pub use output::Image;
 pub use render::render;
 pub use scene::Scene;
@@ -34,11 +35,13 @@ pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
     let is_file = spec.ends_with(".toml") || path.exists();
     let (mut table, base_dir) = if is_file {
         let text =
-            std::fs::read_to_string(path).with_context(|| format!("cannot read scene {spec}"))?;
+            std::fs::read_to_string(path).map_err(|e| Error::io(FileOp::ReadScene, path, e))?;
         let mut table = scene::tables::parse(&text, spec)?;
         // A scene file may start from a catalogue entry: `extends = "cornell-box"`.
         if let Some(base) = table.remove("extends") {
-            let base = base.as_str().context("`extends` must be a catalogue id")?;
+            let base = base
+                .as_str()
+                .ok_or_else(|| Error::invalid("extends", "`extends` must be a catalogue id"))?;
             let mut merged = catalogue::entry(base)?.scene;
             scene::tables::merge(&mut merged, table);
             table = merged;
@@ -61,5 +64,8 @@ pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
     } else {
         &catalogue
     };
-    scene::scene_from_table(table, resources).with_context(|| format!("scene {spec}"))
+    scene::scene_from_table(table, resources).map_err(|e| Error::InScene {
+        spec: spec.to_string(),
+        source: Box::new(e),
+    })
 }

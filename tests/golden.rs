@@ -7,6 +7,8 @@
 //! rewrites the images and still fails, so that someone looks at each before
 //! committing it.
 
+mod common;
+
 use libtest_mimic::{Arguments, Failed, Trial};
 use lumiere::output::{self, Image};
 use lumiere::{catalogue, load_scene};
@@ -35,14 +37,15 @@ fn root() -> PathBuf {
 
 fn render_entry(id: &str) -> Result<(Image, f32), Failed> {
     let a = catalogue::entry(id)
-        .map_err(|e| format!("{e:#}"))?
+        .map_err(|e| common::error_line(&e))?
         .algorithm;
     let sets = [
         format!("camera.width={}", a.test_width),
         format!("camera.height={}", a.test_height),
     ];
-    let scene = load_scene(id, &sets).map_err(|e| format!("{e:#}"))?;
-    Ok((lumiere::render(&scene)?, scene.render.exposure))
+    let scene = load_scene(id, &sets).map_err(|e| common::error_line(&e))?;
+    let image = lumiere::render(&scene).map_err(|e| common::error_line(&e))?;
+    Ok((image, scene.render.exposure))
 }
 
 fn check(id: &str) -> Result<(), Failed> {
@@ -66,8 +69,8 @@ fn check(id: &str) -> Result<(), Failed> {
         )
         .into());
     }
-    let expected = output::load(&golden).map_err(|e| format!("{e:#}"))?;
-    let actual = output::load_png_bytes(&actual).map_err(|e| format!("{e:#}"))?;
+    let expected = output::load(&golden).map_err(|e| common::error_line(&e))?;
+    let actual = output::load_png_bytes(&actual).map_err(|e| common::error_line(&e))?;
     if (expected.width, expected.height) != (actual.width, actual.height) {
         return Err(format!(
             "{id}: golden is {}x{}, render is {}x{}; regenerate with `{regenerate}`",

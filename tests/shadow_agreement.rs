@@ -2,6 +2,8 @@
 //! visibility at every sample except on shadow boundaries (exact methods), or
 //! converging to it as resolution grows (shadow maps).
 
+mod common;
+
 use lumiere::load_scene;
 use lumiere::raster::VisibleSurface;
 use lumiere::render::visible_surface;
@@ -190,7 +192,7 @@ mod closed_shapes {
             );
             let table = tables::parse(&text, "test scene").unwrap();
             let scene = scene_from_table(table, &lumiere::catalogue::resources())
-                .map_err(|e| format!("{e:#}"))
+                .map_err(|e| crate::common::error_line(&e))
                 .unwrap();
             let open = lumiere::shadow::shadow_volumes::open_objects(&scene);
             prop_assert!(open.is_empty(), "open: {:?}", open);

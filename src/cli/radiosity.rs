@@ -62,7 +62,7 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
             frame_error = draw(scene, snapshot).and_then(|image| {
                 let saved = output::save(&image, &path, exposure);
                 animation.push(image);
-                saved
+                Ok(saved?)
             });
         }
     })?;
@@ -86,5 +86,5 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
 fn draw(scene: &Scene, solution: Solution) -> Result<Image> {
     let mut renderer = Renderer::new(scene.clone());
     renderer.set_radiosity_solution(Arc::new(solution));
-    renderer.render()
+    Ok(renderer.render()?)
 }

@@ -134,7 +134,7 @@ pub fn run(args: Args) -> Result<()> {
         bail!("--frames shows radiosity shooting steps: the scene has no [radiosity] table");
     }
     match aov {
-        None => output::save(&renderer.render()?, &args.output, exposure),
+        None => Ok(output::save(&renderer.render()?, &args.output, exposure)?),
         Some("list") => {
             for info in available_buffers(&renderer)? {
                 println!("{:<28} {}", info.name, info.description);
@@ -166,7 +166,7 @@ pub fn run(args: Args) -> Result<()> {
             let rendered = renderer.render_with_buffers(&[name.to_string()])?;
             let buffer = &rendered.buffers[0];
             let format = output::Format::of(&args.output)?;
-            output::save(&buffer.to_image(format), &args.output, 1.0)
+            Ok(output::save(&buffer.to_image(format), &args.output, 1.0)?)
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Animated GIF of a sequence of images (the convergence of a progressive solve).
 
 use super::{Image, to_srgb8};
-use anyhow::{Result, bail};
+use crate::{Error, Result};
 use image::codecs::gif::{GifEncoder, Repeat};
 use image::{Delay, Frame, RgbaImage};
 
@@ -9,7 +9,7 @@ use image::{Delay, Frame, RgbaImage};
 /// 256-colour palette is chosen per frame by the encoder).
 pub fn encode_gif(frames: &[Image], exposure: f32, delay_ms: u32) -> Result<Vec<u8>> {
     if frames.is_empty() {
-        bail!("no frames to animate");
+        return Err(Error::image("no frames to animate"));
     }
     let mut bytes = Vec::new();
     {

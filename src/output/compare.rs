@@ -3,7 +3,7 @@
 //! a PNG and a PFM or EXR of the same render compare equal).
 
 use super::{Image, srgb_decode, to_srgb8};
-use anyhow::{Result, ensure};
+use crate::{Error, Result};
 use glam::Vec3;
 
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -19,14 +19,12 @@ pub struct Comparison {
 }
 
 pub fn compare(a: &Image, b: &Image, exposure: f32) -> Result<Comparison> {
-    ensure!(
-        (a.width, a.height) == (b.width, b.height),
-        "the images differ in size: {}x{} and {}x{}",
-        a.width,
-        a.height,
-        b.width,
-        b.height
-    );
+    if (a.width, a.height) != (b.width, b.height) {
+        return Err(Error::SizeMismatch {
+            first: (a.width, a.height),
+            second: (b.width, b.height),
+        });
+    }
     let mut squares = 0.0;
     let mut max_difference = 0u8;
     let mut differing = 0usize;

@@ -3,7 +3,7 @@
 //! viewer's business, as with PFM.
 
 use super::Image;
-use anyhow::{Result, ensure};
+use crate::{Error, Result};
 use glam::Vec3;
 use image::ImageEncoder;
 use std::io::Cursor;
@@ -30,10 +30,9 @@ pub fn encode(image: &Image) -> Result<Vec<u8>> {
 pub fn decode(bytes: &[u8]) -> Result<Image> {
     let decoded =
         image::load_from_memory_with_format(bytes, image::ImageFormat::OpenExr)?.into_rgb32f();
-    ensure!(
-        decoded.width() > 0 && decoded.height() > 0,
-        "the image is empty"
-    );
+    if decoded.width() == 0 || decoded.height() == 0 {
+        return Err(Error::image("the image is empty"));
+    }
     Ok(Image {
         width: decoded.width(),
         height: decoded.height(),

@@ -13,7 +13,7 @@ pub use animation::encode_gif;
 pub use buffer::{Buffer, BufferData, NO_ID};
 pub use compare::{Comparison, compare, difference_image};
 
-use anyhow::{Context, Result, bail};
+use crate::{Error, FileOp, Result};
 use glam::Vec3;
 use std::io::Write;
 use std::path::Path;
@@ -84,10 +84,9 @@ impl Format {
             Some("png") => Ok(Format::Png),
             Some("pfm") => Ok(Format::Pfm),
             Some("exr") => Ok(Format::Exr),
-            _ => bail!(
-                "{}: unknown image format (use .png for sRGB, .pfm or .exr for linear radiance)",
-                path.display()
-            ),
+            _ => Err(Error::Format {
+                path: path.to_path_buf(),
+            }),
         }
     }
 }
@@ -104,7 +103,7 @@ pub fn encode(image: &Image, format: Format, exposure: f32) -> Result<Vec<u8>> {
 /// Writes `image` to `path`: to a temporary file beside it, then renamed, so a
 /// failure never leaves a half-written file.
 pub fn save(image: &Image, path: &Path, exposure: f32) -> Result<()> {
-    let bytes = encode(image, Format::of(path)?, exposure)?;
+    let bytes = encode(image, Format::of(path)?, exposure).map_err(|e| e.at_path(path))?;
     write_atomically(path, &bytes)
 }
 
@@ -113,32 +112,31 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let mut file = tempfile::NamedTempFile::new_in(dir)
-        .with_context(|| format!("cannot write in {}", dir.display()))?;
-    file.write_all(bytes)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    let mut file =
+        tempfile::NamedTempFile::new_in(dir).map_err(|e| Error::io(FileOp::WriteIn, dir, e))?;
+    let cannot_write = |e| Error::io(FileOp::Write, path, e);
+    file.write_all(bytes).map_err(cannot_write)?;
     // A temporary file is private; the image is an ordinary file.
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
         file.as_file()
             .set_permissions(std::fs::Permissions::from_mode(0o644))
-            .with_context(|| format!("cannot write {}", path.display()))?;
+            .map_err(cannot_write)?;
     }
-    file.persist(path)
-        .with_context(|| format!("cannot write {}", path.display()))?;
+    file.persist(path).map_err(|e| cannot_write(e.error))?;
     Ok(())
 }
 
 /// Reads a PNG (decoded from sRGB to linear), a PFM or an OpenEXR file.
 pub fn load(path: &Path) -> Result<Image> {
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let bytes = std::fs::read(path).map_err(|e| Error::io(FileOp::Read, path, e))?;
     match Format::of(path)? {
         Format::Png => png::decode(&bytes),
         Format::Pfm => pfm::decode(&bytes),
         Format::Exr => exr::decode(&bytes),
     }
-    .with_context(|| format!("{}", path.display()))
+    .map_err(|e| e.at_path(path))
 }
 
 /// Decodes PNG bytes (sRGB to linear).

@@ -2,7 +2,7 @@
 //! little-endian f32 RGB triples (negative scale), rows from the bottom up.
 
 use super::Image;
-use anyhow::{Context, Result, bail, ensure};
+use crate::{Error, Result};
 use glam::Vec3;
 
 pub fn encode(image: &Image) -> Vec<u8> {
@@ -29,21 +29,31 @@ pub fn decode(bytes: &[u8]) -> Result<Image> {
         while at < bytes.len() && !bytes[at].is_ascii_whitespace() {
             at += 1;
         }
-        ensure!(at > start, "not a PFM file (short header)");
-        fields.push(std::str::from_utf8(&bytes[start..at])?.to_string());
+        if at == start {
+            return Err(Error::image("not a PFM file (short header)"));
+        }
+        let field =
+            std::str::from_utf8(&bytes[start..at]).map_err(|e| Error::image(e.to_string()))?;
+        fields.push(field.to_string());
     }
     at += 1; // the single whitespace byte that ends the header
     if fields[0] != "PF" {
-        bail!("not a colour PFM file (header {})", fields[0]);
+        return Err(Error::image(format!(
+            "not a colour PFM file (header {})",
+            fields[0]
+        )));
     }
-    let width: u32 = fields[1].parse().context("bad PFM width")?;
-    let height: u32 = fields[2].parse().context("bad PFM height")?;
-    let scale: f32 = fields[3].parse().context("bad PFM scale")?;
-    ensure!(width > 0 && height > 0, "the image is empty");
+    let bad = |what: &str, e: &dyn std::fmt::Display| Error::image(format!("bad PFM {what}: {e}"));
+    let width: u32 = fields[1].parse().map_err(|e| bad("width", &e))?;
+    let height: u32 = fields[2].parse().map_err(|e| bad("height", &e))?;
+    let scale: f32 = fields[3].parse().map_err(|e| bad("scale", &e))?;
+    if width == 0 || height == 0 {
+        return Err(Error::image("the image is empty"));
+    }
     let count = width as usize * height as usize;
     let data = bytes
         .get(at..at + count * 12)
-        .context("truncated PFM data")?;
+        .ok_or_else(|| Error::image("truncated PFM data"))?;
     let read = |k: usize| {
         let b = [
             data[4 * k],

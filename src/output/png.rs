@@ -1,7 +1,7 @@
 //! PNG: 8-bit sRGB.
 
 use super::{Image, srgb_decode, to_srgb8};
-use anyhow::{Result, ensure};
+use crate::{Error, Result};
 use glam::Vec3;
 
 pub fn encode(image: &Image, exposure: f32) -> Result<Vec<u8>> {
@@ -24,10 +24,9 @@ use image::ImageEncoder;
 
 pub fn decode(bytes: &[u8]) -> Result<Image> {
     let decoded = image::load_from_memory_with_format(bytes, image::ImageFormat::Png)?.to_rgb8();
-    ensure!(
-        decoded.width() > 0 && decoded.height() > 0,
-        "the image is empty"
-    );
+    if decoded.width() == 0 || decoded.height() == 0 {
+        return Err(Error::image("the image is empty"));
+    }
     let pixels = decoded
         .pixels()
         .map(|p| Vec3::from_array(p.0.map(|c| srgb_decode(c as f32 / 255.0))))

@@ -15,7 +15,7 @@
 
 use super::form_factors::{Estimator, patch_factors};
 use super::mesh::Mesh;
-use anyhow::{Result, bail};
+use crate::{Error, Result};
 use glam::DVec3;
 use std::time::{Duration, Instant};
 
@@ -49,14 +49,12 @@ pub fn gather(
 ) -> Result<Gathered> {
     let bytes = matrix_bytes(mesh);
     if bytes > memory_budget {
-        bail!(
-            "gathering would store {} form factors ({:.1} GiB) for {} elements and {} patches, more than the {:.1} GiB allowed; use the shooting solver (O(n) memory) or coarser patches",
-            mesh.elements.len() as u64 * mesh.patches.len() as u64,
-            bytes as f64 / (1u64 << 30) as f64,
-            mesh.elements.len(),
-            mesh.patches.len(),
-            memory_budget as f64 / (1u64 << 30) as f64
-        );
+        return Err(Error::Memory {
+            elements: mesh.elements.len(),
+            patches: mesh.patches.len(),
+            needed: bytes,
+            budget: memory_budget,
+        });
     }
     let start = Instant::now();
     let element_factors = estimator.element_to_patch(mesh);

@@ -13,7 +13,7 @@
 
 use crate::geometry::polygon::{area, newell_normal};
 use crate::scene::Scene;
-use anyhow::{Result, bail};
+use crate::{Error, Result};
 use glam::{DVec3, Vec3};
 use std::collections::HashMap;
 use std::ops::Range;
@@ -84,11 +84,11 @@ impl Mesh {
             }
             let material = &scene.materials[polygon.material];
             if material.diffuse.max_element() >= 1.0 {
-                bail!(
+                return Err(Error::Radiosity(format!(
                     "material `{}`: a diffuse reflectance of {} would create energy; radiosity needs every band below 1",
                     material.name,
                     material.diffuse.max_element()
-                );
+                )));
             }
             let surface = Surface {
                 polygon: id,
@@ -106,7 +106,9 @@ impl Mesh {
             }
         }
         if mesh.patches.is_empty() {
-            bail!("the scene has no polygon with an area to mesh for radiosity");
+            return Err(Error::Radiosity(
+                "the scene has no polygon with an area to mesh for radiosity".into(),
+            ));
         }
         Ok(mesh)
     }
@@ -171,7 +173,7 @@ impl Mesh {
     /// at their side midpoints. Patches are unchanged; each keeps its elements
     /// together. Returns the mesh and, per new element, the element of `self` it
     /// is (`Ok`) or was cut from (`Err`).
-    pub fn refine(&self, marked: &[bool]) -> (Mesh, Vec<Result<usize, usize>>) {
+    pub fn refine(&self, marked: &[bool]) -> (Mesh, Vec<std::result::Result<usize, usize>>) {
         let mut mesh = Mesh {
             vertices: self.vertices.clone(),
             patches: self.patches.clone(),

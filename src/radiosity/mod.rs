@@ -21,7 +21,7 @@ pub mod subdivision;
 
 use crate::scene::Scene;
 pub use crate::settings::{Division, RadiositySettings as Settings, Solver, Subdivision};
-use anyhow::{Result, bail};
+use crate::{Error, Result};
 pub use display::Display;
 pub use form_factors::{Estimator, FormFactorMethod};
 use glam::Vec3;
@@ -42,15 +42,15 @@ pub struct Solution {
 /// by the mesher), something emitting.
 pub fn mesh(scene: &Scene, settings: &Settings) -> Result<Mesh> {
     if settings.subdivision.is_some() && settings.solver != Solver::Gathering {
-        bail!(
-            "adaptive subdivision refines a gathering solution (Cohen et al. 1986): use the gathering solver, or leave `subdivide` out"
-        );
+        return Err(Error::Radiosity(
+            "adaptive subdivision refines a gathering solution (Cohen et al. 1986): use the gathering solver, or leave `subdivide` out".into(),
+        ));
     }
     let mesh = Mesh::build(scene, settings.patches, settings.elements)?;
     if mesh.emitted_power().max_element() <= 0.0 {
-        bail!(
-            "the scene has no emitting surface (a material with `emission`): radiosity has no light to distribute"
-        );
+        return Err(Error::Radiosity(
+            "the scene has no emitting surface (a material with `emission`): radiosity has no light to distribute".into(),
+        ));
     }
     Ok(mesh)
 }

@@ -10,7 +10,7 @@ use crate::radiosity::hemicube::{BACK, Hemicube};
 use crate::radiosity::receivers::Receivers;
 use crate::raster::{NO_POLYGON, Visibility, VisibleSurface};
 use crate::shadow::LightShadows;
-use anyhow::{Result, bail};
+use crate::{Error, Result};
 use std::sync::Arc;
 
 /// A buffer a scene's frame can give, and what it holds.
@@ -235,15 +235,14 @@ impl FrameBuffers {
             } else if let Some(b) = fixed.iter().find(|b| &b.name == name) {
                 frame.fixed.push(b.clone());
             } else {
-                let names: Vec<String> = kinds
-                    .iter()
-                    .map(|k| k.name())
-                    .chain(fixed.iter().map(|b| b.name.clone()))
-                    .collect();
-                bail!(
-                    "this scene's frame has no buffer `{name}`; it has: {}",
-                    names.join(", ")
-                );
+                return Err(Error::UnknownBuffer {
+                    name: name.clone(),
+                    known: kinds
+                        .iter()
+                        .map(|k| k.name())
+                        .chain(fixed.iter().map(|b| b.name.clone()))
+                        .collect(),
+                });
             }
         }
         Ok(frame)

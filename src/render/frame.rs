@@ -2,10 +2,10 @@
 
 use super::buffers::FrameBuffers;
 use super::renderer::{Rendered, Renderer};
+use crate::Result;
 use crate::output::Image;
 use crate::raster::{EdgeTable, Visibility, rasterize_rows, sample_view, uv_gradients};
 use crate::shading::FrameShading;
-use anyhow::Result;
 
 /// Samples per band when the scene does not choose its band height: about 20 MB of
 /// visible-surface buffer.

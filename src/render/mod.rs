@@ -18,10 +18,10 @@ pub use buffers::{BufferInfo, available_buffers};
 pub use integrator::Integrator;
 pub use renderer::{Prepasses, Rendered, Renderer};
 
+use crate::Result;
 use crate::output::Image;
 use crate::raster::{View, VisibleSurface, sample_view};
 use crate::scene::Scene;
-use anyhow::Result;
 
 /// Linear radiance image of `scene` (its radiosity solution when it has `[radiosity]`
 /// settings, else its lights), shadowed by the scene's shadow method.

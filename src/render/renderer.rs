@@ -13,7 +13,7 @@ use crate::radiosity::{self, Solution};
 use crate::scene::{Camera, Light, Scene};
 use crate::settings::ShadowSettings;
 use crate::shadow::{self, LightShadows, SceneOccluders, SharedWork};
-use anyhow::{Result, bail};
+use crate::{Error, Result};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
@@ -79,13 +79,19 @@ impl Renderer {
     /// polygon of the scene (geometry), which a renderer does not change.
     pub fn set_light(&mut self, index: usize, light: Light) -> Result<()> {
         let Some(old) = self.scene.lights.get(index) else {
-            bail!("the scene has no light {index}");
+            return Err(Error::Light {
+                index,
+                message: format!("the scene has no light {index}"),
+            });
         };
         if matches!(old, Light::Polygon(_)) || matches!(light, Light::Polygon(_)) {
-            bail!(
-                "{} is a polygon of the scene: change the scene, not the light",
-                shadow::describe(old, index)
-            );
+            return Err(Error::Light {
+                index,
+                message: format!(
+                    "{} is a polygon of the scene: change the scene, not the light",
+                    shadow::describe(old, index)
+                ),
+            });
         }
         self.scene.lights[index] = light;
         *self.lights[index].lock().expect("no poisoned lock") = None;

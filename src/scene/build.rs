@@ -10,10 +10,11 @@ use super::{
     RenderSettings, Scene, ShadowSettings, SphereLight, SpotDistribution, SpotLight, materials,
     obj, textures, transform, validate,
 };
+use crate::error::ensure_valid;
 use crate::geometry::polygon::{area, centroid, newell_normal, non_planarity};
 use crate::texture::Texture;
 use crate::texture::mapping::Mapping;
-use anyhow::{Context, Result, anyhow, bail, ensure};
+use crate::{Error, Result};
 use glam::{DMat4, DVec3};
 use std::collections::HashMap;
 use std::path::Path;
@@ -23,8 +24,11 @@ use std::sync::Arc;
 const DEFAULT_RESOLUTION: u32 = 32;
 
 pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result<Scene> {
-    let file: SceneFile = serde_path_to_error::deserialize(toml::Value::Table(table))
-        .map_err(|e| anyhow!("{}: {}", e.path(), e.inner()))?;
+    let file: SceneFile =
+        serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
+            let key = e.path().to_string();
+            Error::invalid(&key, format!("{key}: {}", e.inner()))
+        })?;
     let camera = validate::camera(&file.camera)?;
     let render = RenderSettings {
         shading: file.render.shading,
@@ -33,28 +37,33 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         background: validate::colour("render.background", file.render.background)?,
         band_rows: file.render.band_rows,
     };
-    ensure!(
+    ensure_valid!(
         file.render.exposure.is_finite() && file.render.exposure > 0.0,
+        "render.exposure",
         "render.exposure must be a positive number"
     );
     validate::image_size(camera.width, camera.height, render.supersample)?;
     let s = &file.shadows;
-    ensure!(
+    ensure_valid!(
         (1..=8192).contains(&s.map_resolution),
+        "shadows.map_resolution",
         "shadows.map_resolution must be between 1 and 8192, got {}",
         s.map_resolution
     );
-    ensure!(
+    ensure_valid!(
         s.map_bias.is_finite() && s.map_bias >= 0.0,
+        "shadows.map_bias",
         "shadows.map_bias must be a non-negative number"
     );
-    ensure!(
+    ensure_valid!(
         s.pcf % 2 == 1 && s.pcf <= 15,
+        "shadows.pcf",
         "shadows.pcf must be an odd kernel size from 1 to 15, got {}",
         s.pcf
     );
-    ensure!(
+    ensure_valid!(
         (1..=64).contains(&s.light_samples),
+        "shadows.light_samples",
         "shadows.light_samples must be between 1 and 64 (N x N samples per extended light), got {}",
         s.light_samples
     );
@@ -92,18 +101,16 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
     for (index, object) in file.objects.iter().enumerate() {
         builder
             .add_object(index, object, resources)
-            .with_context(|| format!("objects[{index}]"))?;
+            .map_err(|e| e.within(format!("objects[{index}]")))?;
     }
     let mut lights = Vec::new();
     for (index, light) in file.lights.iter().enumerate() {
-        if let Some(light) =
-            builder
-                .add_light(index, light)
-                .with_context(|| match light.name() {
-                    Some(name) => format!("lights[{index}] (`{name}`)"),
-                    None => format!("lights[{index}]"),
-                })?
-        {
+        if let Some(light) = builder.add_light(index, light).map_err(|e| {
+            e.within(match light.name() {
+                Some(name) => format!("lights[{index}] (`{name}`)"),
+                None => format!("lights[{index}]"),
+            })
+        })? {
             lights.push(light);
         }
     }
@@ -149,7 +156,10 @@ impl Builder {
         self.material_index.get(name).copied().ok_or_else(|| {
             let mut known: Vec<&str> = self.material_index.keys().map(String::as_str).collect();
             known.sort();
-            anyhow!("unknown material `{name}` (known: {})", known.join(", "))
+            Error::invalid(
+                "material",
+                format!("unknown material `{name}` (known: {})", known.join(", ")),
+            )
         })
     }
 
@@ -173,21 +183,28 @@ impl Builder {
             ShapeKind::Quad => shapes::quad(),
             ShapeKind::Box => shapes::cube(),
             ShapeKind::Sphere => {
-                ensure!(resolution >= 4, "a sphere needs a resolution of at least 4");
+                ensure_valid!(
+                    resolution >= 4,
+                    "resolution",
+                    "a sphere needs a resolution of at least 4"
+                );
                 shapes::sphere(resolution, smooth)
             }
             ShapeKind::Cylinder => {
-                ensure!(
+                ensure_valid!(
                     resolution >= 3,
+                    "resolution",
                     "a cylinder needs a resolution of at least 3"
                 );
                 shapes::cylinder(resolution, o.caps.unwrap_or(true), smooth)
             }
         };
-        let material_name = o
-            .material
-            .as_deref()
-            .ok_or_else(|| anyhow!("{name}: a {:?} needs a `material`", o.shape))?;
+        let material_name = o.material.as_deref().ok_or_else(|| {
+            Error::invalid(
+                "material",
+                format!("{name}: a {:?} needs a `material`", o.shape),
+            )
+        })?;
         let material = self.material(material_name)?;
         let own_mapping = match o.shape {
             ShapeKind::Sphere => Some(shapes::sphere_mapping()),
@@ -246,7 +263,12 @@ impl Builder {
                 (Some(m), _) => m,
                 (None, Some(n)) => self.material(&n)?,
                 (None, None) => {
-                    bail!("{path}: object {part} has no material (usemtl) and the scene gives none")
+                    return Err(Error::Model {
+                        path: path.into(),
+                        message: format!(
+                            "object {part} has no material (usemtl) and the scene gives none"
+                        ),
+                    });
                 }
             };
             let object = match objects.get(&part) {
@@ -317,8 +339,9 @@ impl Builder {
                 radius,
                 radiance,
             } => {
-                ensure!(
+                ensure_valid!(
                     radius.is_finite() && *radius > 0.0,
+                    "radius",
                     "radius must be a positive number, got {radius}"
                 );
                 Ok(Some(Light::Sphere(SphereLight {
@@ -337,17 +360,22 @@ impl Builder {
                 cosine_power,
                 distribution,
             } => {
-                ensure!(
+                ensure_valid!(
                     cone_angle.is_finite() && *cone_angle > 0.0 && *cone_angle <= 90.0,
+                    "cone_angle",
                     "cone_angle must be in (0, 90] degrees, got {cone_angle}"
                 );
                 let distribution = match (cosine_power, distribution) {
                     (Some(_), Some(_)) => {
-                        bail!("give `cosine_power` or `distribution`, not both")
+                        return Err(Error::invalid(
+                            "distribution",
+                            "give `cosine_power` or `distribution`, not both",
+                        ));
                     }
                     (Some(p), None) => {
-                        ensure!(
+                        ensure_valid!(
                             p.is_finite() && *p >= 0.0,
+                            "cosine_power",
                             "cosine_power must be a non-negative number, got {p}"
                         );
                         SpotDistribution::CosinePower(*p)
@@ -451,24 +479,30 @@ fn object_frame(m: &DMat4, faces: &Faces, own_mapping: Option<Mapping>) -> Objec
 /// A spot light's (degrees, factor) table: angles increasing from 0 up, factors
 /// non-negative; angles turned into radians.
 fn spot_table(table: &[[f64; 2]]) -> Result<Vec<(f64, f64)>> {
-    ensure!(
+    ensure_valid!(
         !table.is_empty(),
+        "distribution",
         "distribution must hold at least one [angle, factor] pair"
     );
     for (k, &[angle, factor]) in table.iter().enumerate() {
-        ensure!(
+        ensure_valid!(
             angle.is_finite() && (0.0..=90.0).contains(&angle),
+            format!("distribution[{k}]"),
             "distribution[{k}]: angle must be between 0 and 90 degrees, got {angle}"
         );
-        ensure!(
+        ensure_valid!(
             factor.is_finite() && factor >= 0.0,
+            format!("distribution[{k}]"),
             "distribution[{k}]: factor must be a non-negative number, got {factor}"
         );
         if k > 0 && angle <= table[k - 1][0] {
-            bail!(
-                "distribution angles must increase, got {} then {angle}",
-                table[k - 1][0]
-            );
+            return Err(Error::invalid(
+                "distribution",
+                format!(
+                    "distribution angles must increase, got {} then {angle}",
+                    table[k - 1][0]
+                ),
+            ));
         }
     }
     Ok(table
@@ -478,10 +512,15 @@ fn spot_table(table: &[[f64; 2]]) -> Result<Vec<(f64, f64)>> {
 }
 
 fn check_polygon(corners: &[DVec3]) -> Result<()> {
-    ensure!(corners.len() >= 3, "a polygon needs at least 3 vertices");
-    ensure!(area(corners) > 0.0, "the polygon has zero area");
-    ensure!(
+    ensure_valid!(
+        corners.len() >= 3,
+        "vertices",
+        "a polygon needs at least 3 vertices"
+    );
+    ensure_valid!(area(corners) > 0.0, "vertices", "the polygon has zero area");
+    ensure_valid!(
         non_planarity(corners) < 1e-6,
+        "vertices",
         "the polygon is not planar (a vertex lies {:.2e} of its size off its plane)",
         non_planarity(corners)
     );
@@ -504,13 +543,16 @@ fn check_keys(o: &ObjectFile) -> Result<()> {
     ];
     for (key, present, shapes) in given {
         if present && !shapes.contains(&o.shape) {
-            bail!("key `{key}` does not apply to shape {:?}", o.shape);
+            return Err(Error::invalid(
+                key,
+                format!("key `{key}` does not apply to shape {:?}", o.shape),
+            ));
         }
         if !present && key == "file" && o.shape == Obj {
-            bail!("shape obj needs a `file`");
+            return Err(Error::invalid(key, "shape obj needs a `file`"));
         }
         if !present && key == "vertices" && o.shape == Polygon {
-            bail!("shape polygon needs `vertices`");
+            return Err(Error::invalid(key, "shape polygon needs `vertices`"));
         }
     }
     Ok(())

@@ -3,7 +3,8 @@
 use super::file::MaterialFile;
 use super::validate::colour;
 use super::{Bump, Material, textures};
-use anyhow::{Result, bail, ensure};
+use crate::error::ensure_valid;
+use crate::{Error, Result};
 use glam::Vec3;
 use std::collections::HashMap;
 
@@ -20,29 +21,38 @@ pub fn from_file(
             None => {
                 let mut known: Vec<&str> = textures.keys().map(String::as_str).collect();
                 known.sort();
-                bail!(
-                    "{}: unknown texture `{t}` (known: {})",
+                Err(Error::invalid(
                     what(key),
-                    if known.is_empty() {
-                        "none".to_string()
-                    } else {
-                        known.join(", ")
-                    }
-                )
+                    format!(
+                        "{}: unknown texture `{t}` (known: {})",
+                        what(key),
+                        if known.is_empty() {
+                            "none".to_string()
+                        } else {
+                            known.join(", ")
+                        }
+                    ),
+                ))
             }
         }
     };
     let bump = match (texture("bump_texture", &m.bump_texture)?, m.bump_height) {
         (Some(texture), height) => {
             let height = height.unwrap_or(0.01);
-            ensure!(
+            ensure_valid!(
                 height.is_finite(),
+                what("bump_height"),
                 "{} must be a finite number",
                 what("bump_height")
             );
             Some(Bump { texture, height })
         }
-        (None, Some(_)) => bail!("{} needs a bump_texture", what("bump_height")),
+        (None, Some(_)) => {
+            return Err(Error::invalid(
+                what("bump_height"),
+                format!("{} needs a bump_texture", what("bump_height")),
+            ));
+        }
         (None, None) => None,
     };
     let mapping = m
@@ -62,8 +72,9 @@ pub fn from_file(
         mapping,
         interpolation: m.interpolation,
     };
-    ensure!(
+    ensure_valid!(
         m.exponent.is_finite() && m.exponent >= 0.0,
+        what("exponent"),
         "{} must be a non-negative number",
         what("exponent")
     );
@@ -82,13 +93,15 @@ pub fn from_mtl(m: &tobj::Material) -> Result<Material> {
         emission: rgb(m.emissive),
         ..Default::default()
     };
-    ensure!(
-        [material.diffuse, material.specular, material.emission]
-            .iter()
-            .all(|c| c.is_finite() && c.min_element() >= 0.0),
-        "MTL material {} has a negative or non-finite colour",
-        m.name
-    );
+    if ![material.diffuse, material.specular, material.emission]
+        .iter()
+        .all(|c| c.is_finite() && c.min_element() >= 0.0)
+    {
+        return Err(Error::Scene(format!(
+            "MTL material {} has a negative or non-finite colour",
+            m.name
+        )));
+    }
     check_energy(&material)?;
     Ok(material)
 }
@@ -96,10 +109,11 @@ pub fn from_mtl(m: &tobj::Material) -> Result<Material> {
 /// A surface may not reflect more than it receives.
 fn check_energy(m: &Material) -> Result<()> {
     let total = m.diffuse + m.specular;
-    ensure!(
-        total.max_element() <= 1.0,
-        "material {}: diffuse + specular reflectance exceeds 1 ({total})",
-        m.name
-    );
+    if total.max_element() > 1.0 {
+        return Err(Error::Scene(format!(
+            "material {}: diffuse + specular reflectance exceeds 1 ({total})",
+            m.name
+        )));
+    }
     Ok(())
 }

@@ -6,7 +6,7 @@ use super::Vertex;
 use super::resources::Resources;
 use super::shapes::Faces;
 use crate::geometry::polygon::{area, newell_normal, non_planarity};
-use anyhow::{Result, anyhow, bail};
+use crate::{Error, Result};
 use glam::{DVec2, DVec3};
 use std::cell::RefCell;
 use std::io::BufReader;
@@ -47,13 +47,21 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
             })?;
             tobj::load_mtl_buf(&mut BufReader::new(data.as_slice()))
         })
-        .map_err(|e| anyhow!("{}: {e}", path.display()))?;
+        .map_err(|e| Error::Model {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
     let materials = match (materials, mtl_error.into_inner()) {
         (Ok(m), _) => m,
         (Err(_), Some(cause)) => {
-            return Err(cause.context(format!("{}: its MTL file", path.display())));
+            return Err(cause.within(format!("{}: its MTL file", path.display())));
         }
-        (Err(e), None) => bail!("{}: its MTL file: {e}", path.display()),
+        (Err(e), None) => {
+            return Err(Error::Model {
+                path: path.to_path_buf(),
+                message: format!("its MTL file: {e}"),
+            });
+        }
     };
 
     let mut out = ObjModel {

@@ -1,12 +1,14 @@
 //! `[radiosity]` from the file, checked.
 
 use super::file::RadiosityFile;
+use crate::Result;
+use crate::error::ensure_valid;
 use crate::settings::{Division, RadiositySettings as Settings, Subdivision};
-use anyhow::{Result, ensure};
 
 pub fn from_file(r: &RadiosityFile) -> Result<Settings> {
-    ensure!(
+    ensure_valid!(
         (2..=4096).contains(&r.resolution),
+        "radiosity.resolution",
         "radiosity.resolution must be between 2 and 4096, got {}",
         r.resolution
     );
@@ -14,36 +16,42 @@ pub fn from_file(r: &RadiosityFile) -> Result<Settings> {
         match value {
             None => Ok(Division::Whole),
             Some(v) => {
-                ensure!(
+                ensure_valid!(
                     v.is_finite() && v > 0.0,
+                    format!("radiosity.{key}"),
                     "radiosity.{key} must be a positive length, got {v}"
                 );
                 Ok(Division::Size(v))
             }
         }
     };
-    ensure!(
+    ensure_valid!(
         r.tolerance.is_finite() && r.tolerance > 0.0 && r.tolerance < 1.0,
+        "radiosity.tolerance",
         "radiosity.tolerance must be between 0 and 1, got {}",
         r.tolerance
     );
-    ensure!(
+    ensure_valid!(
         r.unshot.is_finite() && (0.0..1.0).contains(&r.unshot),
+        "radiosity.unshot",
         "radiosity.unshot must be a fraction from 0 to 1, got {}",
         r.unshot
     );
-    ensure!(
+    ensure_valid!(
         r.max_memory_mb > 0,
+        "radiosity.max_memory_mb",
         "radiosity.max_memory_mb must be positive"
     );
     if let Some(t) = r.subdivide {
-        ensure!(
+        ensure_valid!(
             t.is_finite() && t > 0.0,
+            "radiosity.subdivide",
             "radiosity.subdivide must be a positive fraction, got {t}"
         );
     }
-    ensure!(
+    ensure_valid!(
         r.subdivision_levels <= 8,
+        "radiosity.subdivision_levels",
         "radiosity.subdivision_levels must be at most 8 (each level can quadruple the elements), got {}",
         r.subdivision_levels
     );

@@ -1,7 +1,7 @@
 //! Where a scene's files come from: a directory on disk (a user's scene file) or the
 //! catalogue embedded in the binary. Paths in a scene are relative to the scene.
 
-use anyhow::{Context, Result, anyhow};
+use crate::{Error, FileOp, Result};
 use include_dir::Dir;
 use std::path::{Component, Path, PathBuf};
 
@@ -16,7 +16,7 @@ pub struct Directory(pub PathBuf);
 impl Resources for Directory {
     fn read(&self, path: &Path) -> Result<Vec<u8>> {
         let full = self.0.join(path);
-        std::fs::read(&full).with_context(|| format!("cannot read {}", full.display()))
+        std::fs::read(&full).map_err(|e| Error::io(FileOp::Read, &full, e))
     }
 }
 
@@ -29,7 +29,9 @@ impl Resources for Embedded {
         self.0
             .get_file(&normal)
             .map(|f| f.contents().to_vec())
-            .ok_or_else(|| anyhow!("the catalogue has no file {}", normal.display()))
+            .ok_or_else(|| {
+                Error::Catalogue(format!("the catalogue has no file {}", normal.display()))
+            })
     }
 }
 
@@ -64,6 +66,12 @@ impl Resources for Layered {
                 }
             }
         }
-        Err(first_error.unwrap_or_else(|| anyhow!("no source for {}", path.display())))
+        Err(first_error.unwrap_or_else(|| {
+            Error::io(
+                FileOp::Read,
+                path,
+                std::io::Error::new(std::io::ErrorKind::NotFound, "no source for it"),
+            )
+        }))
     }
 }

@@ -1,22 +1,20 @@
 //! Scene tables before they become scenes: parsing with positions in errors, merging
 //! a base table under another (catalogue `extends`), and `--set key=value` overrides.
 
-use anyhow::{Result, anyhow, bail};
+use crate::{Error, Result};
 use toml::{Table, Value};
 
 /// Parses TOML text; an error names `origin:line:column`.
 pub fn parse(text: &str, origin: &str) -> Result<Table> {
-    text.parse::<Table>().map_err(|e| {
-        let message = e.message().trim().replace('\n', " ");
-        match e.span() {
-            Some(span) => {
-                let before = &text[..span.start.min(text.len())];
-                let line = before.matches('\n').count() + 1;
-                let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
-                anyhow!("{origin}:{line}:{column}: {message}")
-            }
-            None => anyhow!("{origin}: {message}"),
-        }
+    text.parse::<Table>().map_err(|e| Error::Parse {
+        file: origin.to_string(),
+        position: e.span().map(|span| {
+            let before = &text[..span.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+            (line, column)
+        }),
+        message: e.message().trim().replace('\n', " "),
     })
 }
 
@@ -37,12 +35,16 @@ pub fn merge(base: &mut Table, over: Table) {
 /// a bare word that is not TOML is taken as a string. Array elements are named by
 /// their index (`objects.0.material=red`).
 pub fn set(table: &mut Table, assignment: &str) -> Result<()> {
+    let refuse = |message: String| Error::Override {
+        assignment: assignment.to_string(),
+        message,
+    };
     let (path, raw) = assignment
         .split_once('=')
-        .ok_or_else(|| anyhow!("--set {assignment}: expected key=value"))?;
+        .ok_or_else(|| refuse("expected key=value".into()))?;
     let keys: Vec<&str> = path.trim().split('.').collect();
     if keys.iter().any(|k| k.is_empty()) {
-        bail!("--set {assignment}: the key `{path}` has an empty part");
+        return Err(refuse(format!("the key `{path}` has an empty part")));
     }
     let value = parse_value(raw.trim());
     let mut slot = Slot::Table(table);
@@ -60,10 +62,10 @@ pub fn set(table: &mut Table, assignment: &str) -> Result<()> {
             Slot::Array(a) => {
                 let index: usize = key
                     .parse()
-                    .map_err(|_| anyhow!("--set {assignment}: `{key}` must be an array index"))?;
+                    .map_err(|_| refuse(format!("`{key}` must be an array index")))?;
                 let len = a.len();
                 let element = a.get_mut(index).ok_or_else(|| {
-                    anyhow!("--set {assignment}: index {index} is past the end ({len} elements)")
+                    refuse(format!("index {index} is past the end ({len} elements)"))
                 })?;
                 if last {
                     *element = value;
@@ -72,7 +74,9 @@ pub fn set(table: &mut Table, assignment: &str) -> Result<()> {
                 Slot::from(element)
             }
             Slot::Leaf => {
-                bail!("--set {assignment}: `{key}` is inside a value that is not a table")
+                return Err(refuse(format!(
+                    "`{key}` is inside a value that is not a table"
+                )));
             }
         };
     }

@@ -7,10 +7,11 @@ use super::file::{MappingFile, ProceduralKind, TextureFile};
 use super::resources::Resources;
 use super::validate::{colour, vec3};
 use super::{ObjectFrame, Vertex};
+use crate::error::ensure_valid;
 use crate::texture::mapping::{Frame, Mapping, fix_seam};
 use crate::texture::procedural::Procedural;
 use crate::texture::{Texels, Texture};
-use anyhow::{Context, Result, bail, ensure};
+use crate::{Error, Result};
 use glam::{DVec2, DVec3, Vec3};
 use std::path::Path;
 
@@ -27,22 +28,38 @@ pub fn load(name: &str, t: &TextureFile, resources: &dyn Resources) -> Result<Te
         ("resolution", t.resolution.is_some()),
     ];
     let (texels, procedural) = match (&t.image, t.procedural) {
-        (Some(_), Some(_)) => bail!("textures.{name}: give `image` or `procedural`, not both"),
-        (None, None) => bail!("textures.{name}: needs an `image` file or a `procedural` pattern"),
+        (Some(_), Some(_)) => {
+            return Err(Error::invalid(
+                format!("textures.{name}"),
+                format!("textures.{name}: give `image` or `procedural`, not both"),
+            ));
+        }
+        (None, None) => {
+            return Err(Error::invalid(
+                format!("textures.{name}"),
+                format!("textures.{name}: needs an `image` file or a `procedural` pattern"),
+            ));
+        }
         (Some(path), None) => {
             if let Some((key, _)) = procedural_keys.iter().find(|(_, given)| *given) {
-                bail!("{}: applies to procedural textures only", what(key));
+                return Err(Error::invalid(
+                    what(key),
+                    format!("{}: applies to procedural textures only", what(key)),
+                ));
             }
             let bytes = resources.read(Path::new(path))?;
-            let texels =
-                Texels::decode(&bytes).with_context(|| format!("textures.{name}: {path}"))?;
+            let texels = Texels::decode(&bytes).map_err(|e| {
+                e.at_path(Path::new(path))
+                    .within(format!("textures.{name}"))
+            })?;
             (texels, None)
         }
         (None, Some(kind)) => {
             let p = procedural(name, kind, t)?;
             let n = t.resolution.unwrap_or(DEFAULT_RESOLUTION);
-            ensure!(
+            ensure_valid!(
                 (1..=8192).contains(&n),
+                what("resolution"),
                 "{} must be between 1 and 8192, got {n}",
                 what("resolution")
             );
@@ -55,8 +72,9 @@ pub fn load(name: &str, t: &TextureFile, resources: &dyn Resources) -> Result<Te
 fn procedural(name: &str, kind: ProceduralKind, t: &TextureFile) -> Result<Procedural> {
     let what = |key: &str| format!("textures.{name}.{key}");
     let cells = t.cells.unwrap_or(8);
-    ensure!(
+    ensure_valid!(
         (1..=65_536).contains(&cells),
+        what("cells"),
         "{} must be between 1 and 65536, got {cells}",
         what("cells")
     );
@@ -68,8 +86,9 @@ fn procedural(name: &str, kind: ProceduralKind, t: &TextureFile) -> Result<Proce
         ("line", t.line.is_some(), kind == ProceduralKind::Grid),
         ("seed", t.seed.is_some(), kind == ProceduralKind::Noise),
     ] {
-        ensure!(
+        ensure_valid!(
             !given || applies,
+            what(key),
             "{} does not apply to {kind:?}",
             what(key)
         );
@@ -78,8 +97,9 @@ fn procedural(name: &str, kind: ProceduralKind, t: &TextureFile) -> Result<Proce
         ProceduralKind::Checkerboard => Procedural::Checkerboard { cells, colors },
         ProceduralKind::Grid => {
             let line = t.line.unwrap_or(0.1);
-            ensure!(
+            ensure_valid!(
                 line > 0.0 && line < 1.0,
+                what("line"),
                 "{} must be between 0 and 1 (cell units)",
                 what("line")
             );
@@ -103,7 +123,7 @@ pub fn mapping(what: &str, m: &MappingFile) -> Result<Mapping> {
         vec3(&format!("{what}.axis"), m.axis)?,
         vec3(&format!("{what}.reference"), m.reference)?,
     )
-    .with_context(|| what.to_string())?;
+    .map_err(|e| e.within(what))?;
     let mapping = Mapping {
         surface: m.surface,
         projector: m.projector,
@@ -113,7 +133,7 @@ pub fn mapping(what: &str, m: &MappingFile) -> Result<Mapping> {
         radius: m.radius,
         repeat: DVec2::from(m.repeat),
     };
-    mapping.check().with_context(|| what.to_string())?;
+    mapping.check().map_err(|e| e.within(what))?;
     Ok(mapping)
 }
 

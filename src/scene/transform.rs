@@ -2,7 +2,7 @@
 
 use super::Vertex;
 use super::file::{Scale, TransformStep};
-use anyhow::{Result, bail};
+use crate::{Error, Result};
 use glam::{DMat3, DMat4, DVec3};
 
 /// The matrix of a list of steps, the first step applied first.
@@ -16,7 +16,10 @@ pub fn matrix(steps: &[TransformStep]) -> Result<DMat4> {
             TransformStep::Rotate { axis, degrees } => {
                 let axis = DVec3::from(*axis);
                 if axis.length() == 0.0 {
-                    bail!("rotate: the axis must be a non-zero vector");
+                    return Err(Error::invalid(
+                        "transform",
+                        "rotate: the axis must be a non-zero vector",
+                    ));
                 }
                 DMat4::from_axis_angle(axis.normalize(), degrees.to_radians())
             }
@@ -24,7 +27,10 @@ pub fn matrix(steps: &[TransformStep]) -> Result<DMat4> {
         m = s * m;
     }
     if !m.is_finite() || m.determinant() == 0.0 {
-        bail!("the transform is degenerate (a zero or non-finite scale)");
+        return Err(Error::invalid(
+            "transform",
+            "the transform is degenerate (a zero or non-finite scale)",
+        ));
     }
     Ok(m)
 }

@@ -2,7 +2,8 @@
 
 use super::Camera;
 use super::file::{CameraFile, Vec3File};
-use anyhow::{Result, bail, ensure};
+use crate::error::ensure_valid;
+use crate::{Error, Result};
 use glam::DVec3;
 
 /// Largest width or height accepted.
@@ -12,8 +13,9 @@ pub const MAX_SIDE: u32 = 16_384;
 pub const MAX_SAMPLES: u64 = 1 << 26;
 
 pub fn vec3(what: &str, v: Vec3File) -> Result<DVec3> {
-    ensure!(
+    ensure_valid!(
         v.iter().all(|x| x.is_finite()),
+        what,
         "{what} must be finite numbers, got {v:?}"
     );
     Ok(DVec3::from(v))
@@ -22,14 +24,15 @@ pub fn vec3(what: &str, v: Vec3File) -> Result<DVec3> {
 /// A direction: finite, not zero; returned as a unit vector.
 pub fn direction(what: &str, v: Vec3File) -> Result<DVec3> {
     let d = vec3(what, v)?.normalize_or_zero();
-    ensure!(d != DVec3::ZERO, "{what} must not be zero, got {v:?}");
+    ensure_valid!(d != DVec3::ZERO, what, "{what} must not be zero, got {v:?}");
     Ok(d)
 }
 
 pub fn colour(what: &str, v: Vec3File) -> Result<glam::Vec3> {
     let c = vec3(what, v)?;
-    ensure!(
+    ensure_valid!(
         c.min_element() >= 0.0,
+        what,
         "{what} must not be negative, got {v:?}"
     );
     Ok(c.as_vec3())
@@ -37,20 +40,23 @@ pub fn colour(what: &str, v: Vec3File) -> Result<glam::Vec3> {
 
 pub fn image_size(width: u32, height: u32, supersample: u32) -> Result<()> {
     for (name, side) in [("width", width), ("height", height)] {
-        ensure!(
+        ensure_valid!(
             (1..=MAX_SIDE).contains(&side),
+            format!("camera.{name}"),
             "image {name} must be between 1 and {MAX_SIDE}, got {side}"
         );
     }
-    ensure!(
+    ensure_valid!(
         (1..=16).contains(&supersample),
+        "render.supersample",
         "supersample must be between 1 and 16, got {supersample}"
     );
     let samples = width as u64 * height as u64 * (supersample as u64).pow(2);
-    ensure!(
-        samples <= MAX_SAMPLES,
-        "{width}x{height} with supersample {supersample} is {samples} samples, more than the {MAX_SAMPLES} one render takes"
-    );
+    if samples > MAX_SAMPLES {
+        return Err(Error::Scene(format!(
+            "{width}x{height} with supersample {supersample} is {samples} samples, more than the {MAX_SAMPLES} one render takes"
+        )));
+    }
     Ok(())
 }
 
@@ -59,22 +65,28 @@ pub fn camera(c: &CameraFile) -> Result<Camera> {
     let look_at = vec3("camera.look_at", c.look_at)?;
     let up = vec3("camera.up", c.up)?;
     let view = look_at - eye;
-    ensure!(
+    ensure_valid!(
         view.length() > 0.0,
+        "camera.look_at",
         "camera.eye and camera.look_at are the same point"
     );
-    ensure!(up.length() > 0.0, "camera.up must not be zero");
+    ensure_valid!(up.length() > 0.0, "camera.up", "camera.up must not be zero");
     if view.normalize().cross(up.normalize()).length() < 1e-9 {
-        bail!("camera.up is parallel to the view direction (eye to look_at)");
+        return Err(Error::invalid(
+            "camera.up",
+            "camera.up is parallel to the view direction (eye to look_at)",
+        ));
     }
-    ensure!(
+    ensure_valid!(
         c.fov_y.is_finite() && c.fov_y > 0.0 && c.fov_y < 180.0,
+        "camera.fov_y",
         "camera.fov_y must be strictly between 0 and 180 degrees, got {}",
         c.fov_y
     );
     let near = c.near.unwrap_or(1e-3 * view.length());
-    ensure!(
+    ensure_valid!(
         near.is_finite() && near > 0.0,
+        "camera.near",
         "camera.near must be positive, got {near}"
     );
     Ok(Camera {

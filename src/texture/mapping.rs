@@ -27,7 +27,8 @@
 //! of side `size`. Where the line misses the surface, we fall back to the
 //! intermediate-surface normal (a choice; the paper leaves it open).
 
-use anyhow::{Result, ensure};
+use crate::Result;
+use crate::error::ensure_valid;
 use glam::{DVec2, DVec3};
 use std::f64::consts::{PI, TAU};
 
@@ -68,15 +69,21 @@ impl Frame {
     /// The frame with z along `axis` and x along the part of `reference` orthogonal to
     /// it; an error when the axis is zero or the reference parallel to it.
     pub fn new(centre: DVec3, axis: DVec3, reference: DVec3) -> Result<Frame> {
-        ensure!(
+        ensure_valid!(
             centre.is_finite() && axis.is_finite() && reference.is_finite(),
+            "frame",
             "the mapping frame must be finite numbers"
         );
-        ensure!(axis.length() > 1e-12, "the mapping axis is a zero vector");
+        ensure_valid!(
+            axis.length() > 1e-12,
+            "axis",
+            "the mapping axis is a zero vector"
+        );
         let z = axis.normalize();
         let x = reference - z * reference.dot(z);
-        ensure!(
+        ensure_valid!(
             x.length() > 1e-9 * reference.length().max(1e-300),
+            "reference",
             "the mapping reference direction is zero or parallel to the axis (a degenerate frame)"
         );
         let x = x.normalize();
@@ -158,20 +165,24 @@ fn box_face(d: DVec3) -> usize {
 
 impl Mapping {
     pub fn check(&self) -> Result<()> {
-        ensure!(
+        ensure_valid!(
             self.size.min_element() > 0.0 && self.size.is_finite(),
+            "size",
             "mapping size must be positive"
         );
-        ensure!(
+        ensure_valid!(
             self.height > 0.0 && self.height.is_finite(),
+            "height",
             "mapping height must be positive"
         );
-        ensure!(
+        ensure_valid!(
             self.radius > 0.0 && self.radius.is_finite(),
+            "radius",
             "mapping radius must be positive"
         );
-        ensure!(
+        ensure_valid!(
             self.repeat.min_element() > 0.0 && self.repeat.is_finite(),
+            "repeat",
             "mapping repeat must be positive"
         );
         Ok(())

@@ -6,7 +6,7 @@
 //! u = (i + 0.5) / width, v = 1 − (j + 0.5) / height.
 
 use crate::output::srgb_decode;
-use anyhow::{Context, Result, ensure};
+use crate::{Error, Result};
 use glam::{DVec2, Vec3};
 
 /// What a lookup outside [0, 1] does.
@@ -46,16 +46,19 @@ impl Texels {
     /// Decodes a PNG or JPEG file's bytes; 8-bit channels are sRGB-encoded, so they are
     /// decoded to linear radiometric values.
     pub fn decode(bytes: &[u8]) -> Result<Texels> {
-        let image = image::load_from_memory(bytes).context("not a readable PNG or JPEG image")?;
+        let image = image::load_from_memory(bytes)
+            .map_err(|e| Error::image(format!("not a readable PNG or JPEG image: {e}")))?;
         let (width, height) = (image.width(), image.height());
-        ensure!(
-            width > 0 && height > 0,
-            "the image is empty ({width}x{height})"
-        );
-        ensure!(
-            width <= MAX_TEXTURE_SIDE && height <= MAX_TEXTURE_SIDE,
-            "the image is {width}x{height}, larger than {MAX_TEXTURE_SIDE} on a side"
-        );
+        if width == 0 || height == 0 {
+            return Err(Error::image(format!(
+                "the image is empty ({width}x{height})"
+            )));
+        }
+        if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE {
+            return Err(Error::image(format!(
+                "the image is {width}x{height}, larger than {MAX_TEXTURE_SIDE} on a side"
+            )));
+        }
         let rgb = image.to_rgb8();
         let table: Vec<f32> = (0..=255u8).map(|c| srgb_decode(c as f32 / 255.0)).collect();
         let texels = rgb

@@ -31,3 +31,15 @@ pub fn vertex(p: DVec3) -> Vertex {
 pub fn screen_polygon(view: &View, id: u32, points: &[DVec3]) -> Option<ScreenPolygon> {
     ScreenPolygon::from_points(view, id, points)
 }
+
+/// An error and its causes on one line, joined by ": " (as the command line prints
+/// them).
+pub fn error_line(e: &dyn std::error::Error) -> String {
+    let mut line = e.to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        line += &format!(": {c}");
+        cause = c.source();
+    }
+    line
+}
