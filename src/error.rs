@@ -6,9 +6,29 @@
 //! the place: "scene s.toml: lights[1] (`bulb`): radius must be a positive number,
 //! got 0". `Error::root` looks through the wrappers.
 
-use crate::shadow;
+use crate::settings::ShadowMethod;
 use std::fmt;
 use std::path::{Path, PathBuf};
+
+/// A shadow method asked for a light it cannot handle.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Unsupported {
+    pub method: ShadowMethod,
+    pub light: String,
+}
+
+impl std::fmt::Display for Unsupported {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "shadow method `{}` cannot shadow {}: it is a hard-shadow method for point and spot lights; use `ray-cast` (it samples extended lights) or `none`",
+            self.method.name(),
+            self.light
+        )
+    }
+}
+
+impl std::error::Error for Unsupported {}
 
 /// What the library reports.
 #[derive(Debug, thiserror::Error)]
@@ -115,7 +135,7 @@ pub enum Error {
 
     /// A shadow method asked for a light it cannot handle.
     #[error(transparent)]
-    Unsupported(#[from] shadow::Unsupported),
+    Unsupported(#[from] Unsupported),
 
     /// The radiosity solver refuses the scene (a reflectance of 1 or more, nothing
     /// emitting, settings that do not go together).
@@ -326,7 +346,7 @@ mod tests {
         let scene = load_scene("cornell-box", &sets(&["shadows.method=shadow-map"])).unwrap();
         match render(&scene).err().unwrap() {
             Error::Unsupported(u) => {
-                assert_eq!(u.method, shadow::ShadowMethod::ShadowMap);
+                assert_eq!(u.method, ShadowMethod::ShadowMap);
                 assert!(u.light.contains("polygon"), "{}", u.light);
             }
             other => panic!("not Unsupported: {other:?}"),

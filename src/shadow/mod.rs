@@ -33,28 +33,9 @@ use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::Arc;
 
+pub use crate::error::Unsupported;
 pub use crate::settings::ShadowMethod;
 pub use ray_cast::SceneOccluders;
-
-/// A shadow method asked for a light it cannot handle.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Unsupported {
-    pub method: ShadowMethod,
-    pub light: String,
-}
-
-impl std::fmt::Display for Unsupported {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "shadow method `{}` cannot shadow {}: it is a hard-shadow method for point and spot lights; use `ray-cast` (it samples extended lights) or `none`",
-            self.method.name(),
-            self.light
-        )
-    }
-}
-
-impl std::error::Error for Unsupported {}
 
 /// One light's view-independent shadow pre-pass.
 pub trait LightShadows: Send + Sync {
