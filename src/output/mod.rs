@@ -103,11 +103,30 @@ pub fn encode(image: &Image, format: Format, exposure: f32) -> Result<Vec<u8>> {
 /// Writes `image` to `path`: to a temporary file beside it, then renamed, so a
 /// failure never leaves a half-written file.
 pub fn save(image: &Image, path: &Path, exposure: f32) -> Result<()> {
-    let bytes = encode(image, Format::of(path)?, exposure).map_err(|e| e.at_path(path))?;
-    write_atomically(path, &bytes)
+    let format = Format::of(path)?;
+    write_atomically_with(path, |out| match format {
+        Format::Png => png::write(image, exposure, out),
+        Format::Pfm => pfm::write(image, out).map_err(|e| Error::io(FileOp::Write, path, e)),
+        Format::Exr => Ok(out
+            .write_all(&exr::encode(image)?)
+            .map_err(|e| Error::io(FileOp::Write, path, e))?),
+    })
 }
 
+/// Writes `bytes` to `path` atomically (see `save`).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    write_atomically_with(path, |out| {
+        out.write_all(bytes)
+            .map_err(|e| Error::io(FileOp::Write, path, e))
+    })
+}
+
+/// Streams `write`'s output into a temporary file beside `path`, renamed to `path`
+/// once complete.
+fn write_atomically_with(
+    path: &Path,
+    write: impl FnOnce(&mut std::io::BufWriter<&mut std::fs::File>) -> Result<()>,
+) -> Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -115,7 +134,11 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     let mut file =
         tempfile::NamedTempFile::new_in(dir).map_err(|e| Error::io(FileOp::WriteIn, dir, e))?;
     let cannot_write = |e| Error::io(FileOp::Write, path, e);
-    file.write_all(bytes).map_err(cannot_write)?;
+    {
+        let mut out = std::io::BufWriter::new(file.as_file_mut());
+        write(&mut out).map_err(|e| e.at_path(path))?;
+        out.flush().map_err(cannot_write)?;
+    }
     // A temporary file is private; the image is an ordinary file.
     #[cfg(unix)]
     {

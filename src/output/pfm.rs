@@ -6,15 +6,25 @@ use crate::{Error, Result};
 use glam::Vec3;
 
 pub fn encode(image: &Image) -> Vec<u8> {
-    let mut out = format!("PF\n{} {}\n-1.0\n", image.width, image.height).into_bytes();
-    for row in image.pixels.chunks(image.width as usize).rev() {
+    let mut out = Vec::new();
+    write(image, &mut out).expect("writing to memory");
+    out
+}
+
+/// Writes row by row into `out` (no copy of the whole image).
+pub fn write(image: &Image, mut out: impl std::io::Write) -> std::io::Result<()> {
+    write!(out, "PF\n{} {}\n-1.0\n", image.width, image.height)?;
+    let mut bytes = Vec::with_capacity(12 * image.width as usize);
+    for row in image.pixels.chunks(image.width.max(1) as usize).rev() {
+        bytes.clear();
         for p in row {
             for c in p.to_array() {
-                out.extend_from_slice(&c.to_le_bytes());
+                bytes.extend_from_slice(&c.to_le_bytes());
             }
         }
+        out.write_all(&bytes)?;
     }
-    out
+    Ok(())
 }
 
 pub fn decode(bytes: &[u8]) -> Result<Image> {
