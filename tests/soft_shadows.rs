@@ -133,3 +133,70 @@ fn the_sampled_penumbra_converges_to_the_exact_one() {
     let (_, at_2) = table[1];
     assert!(at_16 < at_2 / 8.0, "{table:?}");
 }
+
+/// An exact method's answer, the visible part of the emitter (the light with the
+/// occluder's projection as a hole), gives shading the exact irradiance: the
+/// unshadowed radiance times the visible share of Lambert's contour integral.
+#[test]
+fn the_visible_part_of_an_emitter_shades_exactly() {
+    use lumiere::raster::{LightVisibility, Visibility, VisiblePart};
+    use lumiere::shading::FrameShading;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("soft.toml");
+    std::fs::write(&path, SCENE).unwrap();
+    let scene = lumiere::load_scene(path.to_str().unwrap(), &[]).unwrap();
+    let floor = scene
+        .objects
+        .iter()
+        .position(|o| o.name == "floor")
+        .unwrap();
+    let (view, surface) = visible_surface(&scene);
+    let on_floor = |k: usize| {
+        let s = &surface.samples[k];
+        !s.is_empty() && scene.polygons[s.polygon as usize].object == floor
+    };
+    let parts = (0..surface.samples.len())
+        .map(|k| {
+            if !on_floor(k) {
+                return None;
+            }
+            let p = surface.samples[k].position;
+            let scale = (LIGHT_Y - p.y) / (OCCLUDER_Y - p.y);
+            let project = |o: f64, q: f64| q + (o - q) * scale;
+            let (x0, x1) = (
+                project(-OCCLUDER_HALF, p.x).max(-LIGHT_HALF),
+                project(OCCLUDER_HALF, p.x).min(LIGHT_HALF),
+            );
+            let (z0, z1) = (
+                project(-OCCLUDER_HALF, p.z).max(-LIGHT_HALF),
+                project(OCCLUDER_HALF, p.z).min(LIGHT_HALF),
+            );
+            let mut contours = vec![(
+                square(-LIGHT_HALF, LIGHT_HALF, -LIGHT_HALF, LIGHT_HALF),
+                1.0,
+            )];
+            if x0 < x1 && z0 < z1 {
+                contours.push((square(x0, x1, z0, z1), -1.0));
+            }
+            Some(VisiblePart { contours })
+        })
+        .collect();
+    let exact = Visibility {
+        per_light: vec![Some(LightVisibility::Emitter(parts))],
+    };
+    let shading = FrameShading::new(&scene, &view, vec![true]);
+    let shadowed = shading.shade_band(&surface, &exact, &[]);
+    let unshadowed = shading.shade_band(&surface, &Visibility::none(), &[]);
+    let mut penumbra = 0;
+    for k in (0..surface.samples.len()).filter(|&k| on_floor(k)) {
+        let share = exact_share(surface.samples[k].position) as f32;
+        let expected = unshadowed[k] * share;
+        assert!(
+            (shadowed[k] - expected).abs().max_element() <= 1e-5 * unshadowed[k].max_element(),
+            "sample {k}: {} against {expected}",
+            shadowed[k]
+        );
+        penumbra += (share > 0.0 && share < 1.0) as usize;
+    }
+    assert!(penumbra > 300, "{penumbra}");
+}

@@ -38,6 +38,9 @@ pub struct Args {
     /// linear. `shadow` is `visibility-0`.
     #[arg(long, value_name = "NAME|list|all")]
     aov: Option<String>,
+    /// Radiosity: the element whose hemi-cube item buffers `--aov hemicube-*` shows.
+    #[arg(long, value_name = "E", default_value_t = 0)]
+    hemicube_element: usize,
     /// Render a catalogue entry at its golden-image test size.
     #[arg(long)]
     test_size: bool,
@@ -113,6 +116,7 @@ pub fn run(args: Args) -> Result<()> {
     let radiosity = scene.radiosity.clone();
     let mut renderer = Renderer::new(scene);
     renderer.check()?;
+    renderer.set_hemicube_element(args.hemicube_element);
     let scene = renderer.scene();
     for warning in &scene.warnings {
         eprintln!("warning: {warning}");

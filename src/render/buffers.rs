@@ -121,14 +121,15 @@ fn catalogue(
     (kinds, fixed)
 }
 
-/// The item buffers of the hemi-cube at the first element's centre, looking at the
-/// patches (ids are patch indices): what gathering sees from there.
+/// The item buffers of the hemi-cube at the chosen element's centre (the
+/// renderer's `hemicube_element`), looking at the patches (ids are patch indices):
+/// what gathering sees from there.
 fn hemicube_buffers(renderer: &Renderer, mesh: &crate::radiosity::Mesh) -> Vec<Buffer> {
     let scene = renderer.scene();
     let Some(settings) = &scene.radiosity else {
         return Vec::new();
     };
-    let Some(element) = mesh.elements.first() else {
+    let Some(element) = mesh.elements.get(renderer.hemicube_element()) else {
         return Vec::new();
     };
     let patch = &mesh.patches[element.patch];
@@ -161,7 +162,7 @@ fn fixed_description(name: &str) -> String {
     if let Some(rest) = name.strip_prefix("shadow-map-") {
         format!("shadow-map depth image of light and cube face {rest} (linear)")
     } else if let Some(face) = name.strip_prefix("hemicube-") {
-        format!("hemi-cube item buffer, {face} face, at the first element (patch ids)")
+        format!("hemi-cube item buffer, {face} face, at the chosen element (patch ids)")
     } else {
         String::new()
     }

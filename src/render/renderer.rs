@@ -42,6 +42,7 @@ pub struct Renderer {
     built_occluders: AtomicUsize,
     built_light_shadows: AtomicUsize,
     built_radiosity: AtomicUsize,
+    hemicube_element: usize,
 }
 
 impl Renderer {
@@ -54,6 +55,7 @@ impl Renderer {
             built_occluders: AtomicUsize::new(0),
             built_light_shadows: AtomicUsize::new(0),
             built_radiosity: AtomicUsize::new(0),
+            hemicube_element: 0,
         }
     }
 
@@ -68,6 +70,16 @@ impl Renderer {
             light_shadows: self.built_light_shadows.load(Ordering::Relaxed),
             radiosity: self.built_radiosity.load(Ordering::Relaxed),
         }
+    }
+
+    /// The radiosity element whose hemi-cube item buffers the `hemicube-*` buffers
+    /// show (0 unless chosen).
+    pub fn hemicube_element(&self) -> usize {
+        self.hemicube_element
+    }
+
+    pub fn set_hemicube_element(&mut self, element: usize) {
+        self.hemicube_element = element;
     }
 
     /// A new camera: nothing view-independent changes.
