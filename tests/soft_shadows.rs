@@ -53,12 +53,13 @@ fn square(x0: f64, x1: f64, z0: f64, z1: f64) -> Vec<DVec3> {
     ]
 }
 
-/// The exact share of the light's irradiance reaching floor point `p`.
-fn exact_share(p: DVec3) -> f64 {
-    let n = DVec3::Y;
-    let light = square(-LIGHT_HALF, LIGHT_HALF, -LIGHT_HALF, LIGHT_HALF);
-    let whole = projected_solid_angle(p, n, &light);
-    // The occluder seen from p, on the light's plane: scaled about p.
+fn light() -> Vec<DVec3> {
+    square(-LIGHT_HALF, LIGHT_HALF, -LIGHT_HALF, LIGHT_HALF)
+}
+
+/// The part of the light the occluder hides from floor point `p`: the occluder
+/// seen from p on the light's plane (scaled about p), cut to the light.
+fn hidden(p: DVec3) -> Option<Vec<DVec3>> {
     let k = (LIGHT_Y - p.y) / (OCCLUDER_Y - p.y);
     let project = |o: f64, q: f64| q + (o - q) * k;
     let (x0, x1) = (
@@ -69,11 +70,14 @@ fn exact_share(p: DVec3) -> f64 {
         project(-OCCLUDER_HALF, p.z).max(-LIGHT_HALF),
         project(OCCLUDER_HALF, p.z).min(LIGHT_HALF),
     );
-    let hidden = if x0 < x1 && z0 < z1 {
-        projected_solid_angle(p, n, &square(x0, x1, z0, z1))
-    } else {
-        0.0
-    };
+    (x0 < x1 && z0 < z1).then(|| square(x0, x1, z0, z1))
+}
+
+/// The exact share of the light's irradiance reaching floor point `p`.
+fn exact_share(p: DVec3) -> f64 {
+    let n = DVec3::Y;
+    let whole = projected_solid_angle(p, n, &light());
+    let hidden = hidden(p).map_or(0.0, |h| projected_solid_angle(p, n, &h));
     (whole - hidden) / whole
 }
 
@@ -161,23 +165,8 @@ fn the_visible_part_of_an_emitter_shades_exactly() {
                 return None;
             }
             let p = surface.samples[k].position;
-            let scale = (LIGHT_Y - p.y) / (OCCLUDER_Y - p.y);
-            let project = |o: f64, q: f64| q + (o - q) * scale;
-            let (x0, x1) = (
-                project(-OCCLUDER_HALF, p.x).max(-LIGHT_HALF),
-                project(OCCLUDER_HALF, p.x).min(LIGHT_HALF),
-            );
-            let (z0, z1) = (
-                project(-OCCLUDER_HALF, p.z).max(-LIGHT_HALF),
-                project(OCCLUDER_HALF, p.z).min(LIGHT_HALF),
-            );
-            let mut contours = vec![(
-                square(-LIGHT_HALF, LIGHT_HALF, -LIGHT_HALF, LIGHT_HALF),
-                1.0,
-            )];
-            if x0 < x1 && z0 < z1 {
-                contours.push((square(x0, x1, z0, z1), -1.0));
-            }
+            let mut contours = vec![(light(), 1.0)];
+            contours.extend(hidden(p).map(|h| (h, -1.0)));
             Some(VisiblePart { contours })
         })
         .collect();

@@ -61,12 +61,7 @@ impl Integrator {
         match self {
             Integrator::Direct => self.draw_list(scene, view, &only),
             Integrator::Radiosity(solution) => {
-                let pieces = display::element_polygons(
-                    scene,
-                    &solution.mesh,
-                    &solution.elements,
-                    solution.display,
-                );
+                let pieces = elements(scene, solution);
                 let colors: Vec<Vec<Vec3>> = pieces
                     .par_iter()
                     .map(|piece| {
@@ -119,12 +114,7 @@ impl Integrator {
                 )
             }
             Integrator::Radiosity(solution) => {
-                let pieces = display::element_polygons(
-                    scene,
-                    &solution.mesh,
-                    &solution.elements,
-                    solution.display,
-                );
+                let pieces = elements(scene, solution);
                 prepare(
                     view,
                     pieces.iter().enumerate().map(|(e, piece)| ToPrepare {
@@ -182,4 +172,9 @@ pub fn lit_directly(scene: &Scene, radiosity: bool) -> Vec<bool> {
         .iter()
         .map(|light| !(radiosity && matches!(light, Light::Polygon(_))))
         .collect()
+}
+
+/// A solution's elements as the scan-line pass draws them.
+fn elements(scene: &Scene, solution: &Solution) -> Vec<display::ElementPolygon> {
+    display::element_polygons(scene, &solution.mesh, &solution.elements, solution.display)
 }
