@@ -25,7 +25,7 @@ fn main() {
         .collect();
     trials.push(Trial::test("golden::every_golden_has_an_entry", orphans));
     trials.push(Trial::test(
-        "golden::same_bytes_with_one_thread_and_four",
+        "golden::same_bytes_with_one_two_and_eight_threads",
         deterministic,
     ));
     libtest_mimic::run(&args, trials).exit();
@@ -170,10 +170,15 @@ fn deterministic() -> Result<(), Failed> {
                 .collect()
         })
     };
-    let (one, four) = (render_all(1)?, render_all(4)?);
-    for (id, (a, b)) in catalogue::ids().iter().zip(one.iter().zip(&four)) {
-        if a != b {
-            return Err(format!("{id}: the image differs between 1 and 4 threads").into());
+    let one = render_all(1)?;
+    for threads in [2, 8] {
+        let many = render_all(threads)?;
+        for (id, (a, b)) in catalogue::ids().iter().zip(one.iter().zip(&many)) {
+            if a != b {
+                return Err(
+                    format!("{id}: the image differs between 1 and {threads} threads").into(),
+                );
+            }
         }
     }
     Ok(())
