@@ -162,6 +162,15 @@ pub fn load(path: &Path) -> Result<Image> {
     .map_err(|e| e.at_path(path))
 }
 
+/// Decodes an image file's bytes in `format`.
+pub fn decode(bytes: &[u8], format: Format) -> Result<Image> {
+    match format {
+        Format::Png => png::decode(bytes),
+        Format::Pfm => pfm::decode(bytes),
+        Format::Exr => exr::decode(bytes),
+    }
+}
+
 /// Decodes PNG bytes (sRGB to linear).
 pub fn load_png_bytes(bytes: &[u8]) -> Result<Image> {
     png::decode(bytes)

@@ -41,10 +41,13 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
     let mtl_error = RefCell::new(None);
     let (models, materials) =
         tobj::load_obj_buf(&mut BufReader::new(bytes.as_slice()), &options, |mtl| {
-            let data = resources.read(&dir.join(mtl)).map_err(|e| {
-                mtl_error.replace(Some(e));
-                tobj::LoadError::OpenFileFailed
-            })?;
+            let data = resources
+                .read(&dir.join(mtl))
+                .and_then(|data| short_colour(&data).map_or(Ok(data), Err))
+                .map_err(|e| {
+                    mtl_error.replace(Some(e));
+                    tobj::LoadError::OpenFileFailed
+                })?;
             tobj::load_mtl_buf(&mut BufReader::new(data.as_slice()))
         })
         .map_err(|e| Error::Model {
@@ -168,4 +171,21 @@ fn planar_pieces(face: Vec<Vertex>) -> Vec<Vec<Vertex>> {
             piece
         })
         .collect()
+}
+
+/// A colour line (`Ka`, `Kd`, `Ks`, `Ke`) with fewer than three numbers: tobj's MTL
+/// parser panics on one, so it is refused here, by line number.
+fn short_colour(mtl: &[u8]) -> Option<Error> {
+    let text = String::from_utf8_lossy(mtl);
+    text.lines().enumerate().find_map(|(n, line)| {
+        let mut words = line.split_whitespace();
+        let key = words.next()?;
+        let count = words.count();
+        (matches!(key, "Ka" | "Kd" | "Ks" | "Ke") && count < 3).then(|| {
+            Error::Scene(format!(
+                "line {}: `{key}` needs three numbers (r g b), got {count}",
+                n + 1
+            ))
+        })
+    })
 }
