@@ -11,14 +11,20 @@ use lumiere::output::{self, Format};
 use lumiere::scene::resources::Resources;
 use lumiere::scene::{scene_from_table, tables};
 use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
 use std::collections::HashMap;
 use std::path::Path;
 
-fn cases() -> u32 {
-    std::env::var("FUZZ_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(300)
+/// The suite's cases are the same on every run (a fixed seed); a long run may set
+/// `FUZZ_SEED` to explore elsewhere.
+fn config() -> ProptestConfig {
+    let number = |name: &str| std::env::var(name).ok().and_then(|v| v.parse::<u64>().ok());
+    ProptestConfig {
+        cases: number("FUZZ_CASES").unwrap_or(300) as u32,
+        rng_seed: RngSeed::Fixed(number("FUZZ_SEED").unwrap_or(1)),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    }
 }
 
 /// Files held in memory, as a scene's directory.
@@ -134,7 +140,7 @@ fn load(text: &str, files: &Files, sets: &[String]) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(), failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(config())]
 
     /// Scene files: arbitrary text, and mutations of a valid scene.
     #[test]
