@@ -240,3 +240,35 @@ fn a_short_mtl_colour_is_refused_by_line() {
         "{chain}"
     );
 }
+
+/// A vertex that is not a number drops its face with a warning that says so (not
+/// "zero area"); a missing texture image names the texture.
+#[test]
+fn messages_name_the_real_cause() {
+    let obj = "mtllib m.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n";
+    let table = tables::parse(SCENE, "fuzz.toml").unwrap();
+    let scene = scene_from_table(table, &files(obj, MTL)).unwrap();
+    assert!(
+        scene
+            .warnings
+            .iter()
+            .any(|w| w.contains("a vertex that is not a finite number")),
+        "{:?}",
+        scene.warnings
+    );
+    assert!(!scene.warnings.iter().any(|w| w.contains("zero area")));
+    let text = SCENE.replace(
+        "procedural = \"checkerboard\"\ncells = 4",
+        "image = \"nowhere.png\"",
+    );
+    let error = scene_from_table(tables::parse(&text, "fuzz.toml").unwrap(), &files(OBJ, MTL))
+        .err()
+        .unwrap();
+    let mut chain = error.to_string();
+    let mut source = std::error::Error::source(&error);
+    while let Some(s) = source {
+        chain += &format!(": {s}");
+        source = s.source();
+    }
+    assert!(chain.contains("textures.checks.image"), "{chain}");
+}

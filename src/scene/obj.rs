@@ -89,6 +89,14 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
                 .collect();
             start += arity;
             let positions: Vec<DVec3> = face.iter().map(|v| v.position).collect();
+            if positions.iter().any(|p| !p.is_finite()) {
+                out.warnings.push(format!(
+                    "{}: object {}: a face with a vertex that is not a finite number was dropped",
+                    path.display(),
+                    model.name
+                ));
+                continue;
+            }
             let bend = non_planarity(&positions);
             if bend > WARN_NON_PLANAR {
                 out.warnings.push(format!(

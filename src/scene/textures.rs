@@ -47,7 +47,9 @@ pub fn load(name: &str, t: &TextureFile, resources: &dyn Resources) -> Result<Te
                     format!("{}: applies to procedural textures only", what(key)),
                 ));
             }
-            let bytes = resources.read(Path::new(path))?;
+            let bytes = resources
+                .read(Path::new(path))
+                .map_err(|e| e.within(what("image")))?;
             let texels = Texels::decode(&bytes).map_err(|e| {
                 e.at_path(Path::new(path))
                     .within(format!("textures.{name}"))
