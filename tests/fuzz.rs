@@ -8,12 +8,13 @@
 //! harnesses drive the same entry points with proptest's generators instead.
 
 use lumiere::output::{self, Format};
-use lumiere::scene::resources::Resources;
 use lumiere::scene::{scene_from_table, tables};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
+
+mod common;
+use common::{Files, error_line};
 use std::collections::HashMap;
-use std::path::Path;
 
 /// The suite's cases are the same on every run (a fixed seed); a long run may set
 /// `FUZZ_SEED` to explore elsewhere.
@@ -24,18 +25,6 @@ fn config() -> ProptestConfig {
         rng_seed: RngSeed::Fixed(number("FUZZ_SEED").unwrap_or(1)),
         failure_persistence: None,
         ..ProptestConfig::default()
-    }
-}
-
-/// Files held in memory, as a scene's directory.
-struct Files(HashMap<String, Vec<u8>>);
-
-impl Resources for Files {
-    fn read(&self, path: &Path) -> lumiere::Result<Vec<u8>> {
-        self.0
-            .get(path.to_str().unwrap_or(""))
-            .cloned()
-            .ok_or_else(|| lumiere::Error::Scene(format!("no file {}", path.display())))
     }
 }
 
@@ -226,15 +215,7 @@ fn a_short_mtl_colour_is_refused_by_line() {
     let mtl = "newmtl red\nKd 0.6 0.1\n";
     let table = tables::parse(SCENE, "fuzz.toml").unwrap();
     let error = scene_from_table(table, &files(OBJ, mtl)).err().unwrap();
-    let chain = {
-        let mut text = error.to_string();
-        let mut source = std::error::Error::source(&error);
-        while let Some(s) = source {
-            text += &format!(": {s}");
-            source = s.source();
-        }
-        text
-    };
+    let chain = error_line(&error);
     assert!(
         chain.contains("line 2: `Kd` needs three numbers (r g b), got 2"),
         "{chain}"
@@ -264,11 +245,39 @@ fn messages_name_the_real_cause() {
     let error = scene_from_table(tables::parse(&text, "fuzz.toml").unwrap(), &files(OBJ, MTL))
         .err()
         .unwrap();
-    let mut chain = error.to_string();
-    let mut source = std::error::Error::source(&error);
-    while let Some(s) = source {
-        chain += &format!(": {s}");
-        source = s.source();
-    }
+    let chain = error_line(&error);
     assert!(chain.contains("textures.checks.image"), "{chain}");
+}
+
+/// An MTL file's `map_Kd` is loaded (relative to the OBJ file) and scales its
+/// material's diffuse colour, as users of OBJ files expect.
+#[test]
+fn mtl_diffuse_maps_are_loaded() {
+    let image = output::Image {
+        width: 2,
+        height: 2,
+        pixels: vec![glam::Vec3::new(0.25, 0.5, 1.0); 4],
+    };
+    let png = output::encode(&image, Format::Png, 1.0).unwrap();
+    let mut files = files(OBJ, "newmtl red\nKd 0.6 0.1 0.1\nmap_Kd maps/wood.png\n");
+    files.0.insert("maps/wood.png".to_string(), png);
+    let scene = scene_from_table(tables::parse(SCENE, "fuzz.toml").unwrap(), &files).unwrap();
+    let red = scene.materials.iter().find(|m| m.name == "red").unwrap();
+    let texture = &scene.textures[red.diffuse_texture.expect("map_Kd loaded")];
+    assert_eq!((texture.texels.width, texture.texels.height), (2, 2));
+    let missing = files_without(&files, "maps/wood.png");
+    let error = scene_from_table(tables::parse(SCENE, "fuzz.toml").unwrap(), &missing)
+        .err()
+        .unwrap();
+    let chain = error_line(&error);
+    assert!(
+        chain.contains("map_Kd") && chain.contains("maps/wood.png"),
+        "{chain}"
+    );
+}
+
+fn files_without(files: &Files, name: &str) -> Files {
+    let mut kept = files.0.clone();
+    kept.remove(name);
+    Files(kept)
 }

@@ -1,7 +1,7 @@
 //! From a parsed scene table to a `Scene`: shapes generated, OBJ files loaded,
 //! transforms applied, materials resolved, emitters turned into polygon lights.
 
-use super::file::{LightFile, ObjectFile, SceneFile, ShapeKind};
+use super::file::{LightFile, ObjectFile, SceneFile, ShapeKind, TextureFile};
 use super::radiosity_settings;
 use super::resources::Resources;
 use super::shapes::{self, Faces};
@@ -231,6 +231,32 @@ impl Builder {
         self.push_polygon(face, material, object);
     }
 
+    /// An MTL file's `map_Kd` image (relative to the OBJ file, as the MTL is),
+    /// loaded once per file with the default wrap and filter.
+    fn add_mtl_texture(&mut self, obj: &str, map: &str, res: &dyn Resources) -> Result<usize> {
+        let file = Path::new(obj).parent().unwrap_or(Path::new("")).join(map);
+        let name = file.to_string_lossy().into_owned();
+        if let Some(&index) = self.texture_index.get(&name) {
+            return Ok(index);
+        }
+        let t = TextureFile {
+            image: Some(name.clone()),
+            procedural: None,
+            cells: None,
+            colors: None,
+            line: None,
+            seed: None,
+            resolution: None,
+            wrap: Default::default(),
+            filter: Default::default(),
+        };
+        let texture = textures::load(&name, &t, res)
+            .map_err(|e| e.within(format!("{obj}: its MTL file's map_Kd")))?;
+        self.texture_index.insert(name, self.textures.len());
+        self.textures.push(Arc::new(texture));
+        Ok(self.textures.len() - 1)
+    }
+
     fn add_obj(
         &mut self,
         name: &str,
@@ -248,7 +274,11 @@ impl Builder {
             .transpose()?;
         for mtl in &model.materials {
             if !self.material_index.contains_key(&mtl.name) {
-                self.add_material(materials::from_mtl(mtl)?);
+                let mut material = materials::from_mtl(mtl)?;
+                if let Some(map) = &mtl.diffuse_texture {
+                    material.diffuse_texture = Some(self.add_mtl_texture(path, map, res)?);
+                }
+                self.add_material(material);
             }
         }
         let frame = object_frame(m, &model.faces, None);
