@@ -131,6 +131,17 @@ fn write_atomically_with(
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
+    // Renaming over a read-only file would replace it silently.
+    if std::fs::metadata(path).is_ok_and(|m| m.permissions().readonly()) {
+        return Err(Error::io(
+            FileOp::Write,
+            path,
+            std::io::Error::new(
+                std::io::ErrorKind::PermissionDenied,
+                "the file is read-only: it is left as it is",
+            ),
+        ));
+    }
     let mut file =
         tempfile::NamedTempFile::new_in(dir).map_err(|e| Error::io(FileOp::WriteIn, dir, e))?;
     let cannot_write = |e| Error::io(FileOp::Write, path, e);

@@ -116,6 +116,16 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
     }
     lights.extend(builder.polygon_lights());
     builder.warn_untextured_modes(render.shading);
+    // A black image with no word of why helps nobody.
+    if builder.polygons.is_empty() {
+        builder
+            .warnings
+            .push("the scene has no objects: the image shows the background only".into());
+    } else if lights.is_empty() && radiosity.is_none() {
+        builder
+            .warnings
+            .push("the scene has no lights and nothing emits: the image is black".into());
+    }
 
     Ok(Scene {
         camera,
