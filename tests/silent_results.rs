@@ -47,7 +47,7 @@ fn a_read_only_output_is_left_alone() {
         height: 1,
         pixels: vec![glam::Vec3::ONE],
     };
-    let error = output::save(&image, &path, 1.0).err().expect("refused");
+    let error = output::save(&image, &path, 1.0).expect_err("refused");
     let line = common::error_line(&error);
     assert!(
         line.contains("read-only") && line.contains("kept.pfm"),
