@@ -962,3 +962,72 @@ fn a_method_refuses_a_light_it_cannot_shadow() {
     );
     assert_eq!(run.code, 0, "{}", run.stderr);
 }
+
+/// `--set` changes what the scene defines: a misspelt material or texture name (an
+/// entry nothing uses) is refused with the nearest name, while new settings tables,
+/// a material an object is given, and an OBJ model's MTL material are accepted.
+#[test]
+fn overrides_refuse_entries_nothing_uses() {
+    let grey = scene(CAMERA, "");
+    let files = [("s.toml", grey.as_str())];
+    render_error(
+        &files,
+        &["s.toml", "--set", "materials.gery.diffuse=[1, 0, 0]"],
+        "no material `gery` that anything uses (did you mean `grey`?)",
+    );
+    render_error(
+        &[],
+        &[
+            "perspective-texture",
+            "--set",
+            "materials.afine.interpolation=perspective",
+        ],
+        "did you mean `affine`?",
+    );
+    render_error(
+        &[],
+        &[
+            "perspective-texture",
+            "--set",
+            "textures.chekcs.filter=nearest",
+        ],
+        "did you mean `checks`?",
+    );
+    render_error(
+        &files,
+        &["s.toml", "--set", "objects.3.material=grey"],
+        "past the end",
+    );
+    let dir = workspace(&files);
+    for args in [
+        &[
+            "s.toml",
+            "--set",
+            "materials.red.diffuse=[0.8, 0.1, 0.1]",
+            "--set",
+            "objects.0.material=red",
+        ][..],
+        &[
+            "s.toml",
+            "--set",
+            "shadows.light_samples=8",
+            "--set",
+            "render.band_rows=7",
+        ],
+        &[
+            "cornell-box",
+            "--width",
+            "16",
+            "--height",
+            "16",
+            "--set",
+            "materials.white.diffuse=[0.2, 0.2, 0.9]",
+        ],
+    ] {
+        let mut all = vec!["render"];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&["-o", "ok.png"]);
+        let run = lumiere(&all, dir.path());
+        assert_eq!(run.code, 0, "{args:?}: {}", run.stderr);
+    }
+}
