@@ -1031,3 +1031,27 @@ fn overrides_refuse_entries_nothing_uses() {
         assert_eq!(run.code, 0, "{args:?}: {}", run.stderr);
     }
 }
+
+/// `--steps`, `--ambient` and `--frames` are the shooting solver's; with gathering they
+/// would do nothing, so they are refused.
+#[test]
+fn shooting_options_are_refused_with_gathering() {
+    for (option, fragment) in [
+        (
+            &["--steps", "5"][..],
+            "--steps belongs to the shooting solver",
+        ),
+        (&["--ambient"], "--ambient belongs to the shooting solver"),
+        (
+            &["--frames", "steps"],
+            "--frames belongs to the shooting solver",
+        ),
+    ] {
+        let mut args = vec!["radiosity-gathering"];
+        args.extend_from_slice(option);
+        render_error(&[], &args, fragment);
+        let mut args = vec!["cornell-box", "--radiosity", "gathering"];
+        args.extend_from_slice(option);
+        render_error(&[], &args, fragment);
+    }
+}
