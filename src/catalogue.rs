@@ -104,12 +104,9 @@ fn entry_from(id: &str, chain: &mut Vec<String>) -> Result<Entry> {
 
 fn unknown(id: &str) -> Error {
     let known = ids();
-    let nearest = known
-        .iter()
-        .min_by_key(|k| strsim::levenshtein(k, id))
-        .filter(|k| strsim::levenshtein(k, id) <= k.len().max(id.len()) / 2);
+    let nearest = tables::nearest(known.iter().map(String::as_str), id);
     Error::UnknownEntry {
         id: id.to_string(),
-        suggestion: nearest.cloned(),
+        suggestion: nearest.map(str::to_string),
     }
 }

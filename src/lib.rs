@@ -53,9 +53,16 @@ pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
     } else {
         (catalogue::entry(spec)?.scene, Default::default())
     };
+    // Entries of the named collections the overrides add (collection, name, assignment).
+    let mut added = Vec::new();
     for assignment in overrides {
+        let before = scene::tables::named_entries(&table);
         scene::tables::set(&mut table, assignment)?;
+        for (collection, name) in scene::tables::named_entries(&table).difference(&before) {
+            added.push((*collection, name.clone(), assignment.as_str()));
+        }
     }
+    refuse_unused_textures(&table, &added)?;
     let catalogue = catalogue::resources();
     let layered;
     let resources: &dyn scene::resources::Resources = if is_file {
@@ -64,8 +71,60 @@ pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
     } else {
         &catalogue
     };
-    scene::scene_from_table(table, resources).map_err(|e| Error::InScene {
+    let scene = scene::scene_from_table(table, resources).map_err(|e| Error::InScene {
         spec: spec.to_string(),
         source: Box::new(e),
-    })
+    })?;
+    refuse_unused_materials(&scene, &added)?;
+    Ok(scene)
+}
+
+/// A texture an override adds that no material names (a misspelt name) is refused.
+fn refuse_unused_textures(table: &toml::Table, added: &[(&str, String, &str)]) -> Result<()> {
+    let materials = table.get("materials").and_then(toml::Value::as_table);
+    let used = |name: &str| {
+        materials.into_iter().flat_map(|m| m.values()).any(|m| {
+            ["diffuse_texture", "specular_texture", "bump_texture"]
+                .iter()
+                .any(|key| m.get(*key).and_then(toml::Value::as_str) == Some(name))
+        })
+    };
+    for (_, name, assignment) in added.iter().filter(|a| a.0 == "textures") {
+        if !used(name) {
+            let textures = table.get("textures").and_then(toml::Value::as_table);
+            let defined = textures
+                .into_iter()
+                .flat_map(|t| t.keys())
+                .filter(|k| !added.iter().any(|(c, n, _)| *c == "textures" && n == *k));
+            return Err(Error::Override {
+                assignment: assignment.to_string(),
+                message: scene::tables::not_defined("textures", name, defined.map(String::as_str)),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// A material an override adds that no polygon wears (a misspelt name) is refused;
+/// one named like an OBJ file's MTL material replaces it, and is worn.
+fn refuse_unused_materials(scene: &Scene, added: &[(&str, String, &str)]) -> Result<()> {
+    let is_added = |name: &str| added.iter().any(|(c, n, _)| *c == "materials" && n == name);
+    for (_, name, assignment) in added.iter().filter(|a| a.0 == "materials") {
+        let worn = scene
+            .polygons
+            .iter()
+            .any(|p| scene.materials[p.material].name == *name);
+        if !worn {
+            let defined = scene
+                .materials
+                .iter()
+                .map(|m| m.name.as_str())
+                .filter(|n| !is_added(n));
+            return Err(Error::Override {
+                assignment: assignment.to_string(),
+                message: scene::tables::not_defined("materials", name, defined),
+            });
+        }
+    }
+    Ok(())
 }

@@ -962,3 +962,279 @@ fn a_method_refuses_a_light_it_cannot_shadow() {
     );
     assert_eq!(run.code, 0, "{}", run.stderr);
 }
+
+/// Runs the binary with its standard output closed before it writes: a reader that
+/// went away (`lumiere list | head -1`).
+fn lumiere_into_closed_pipe(args: &[&str], dir: &Path) -> Run {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(args)
+        .current_dir(dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("the binary ends");
+    Run {
+        code: out.status.code().unwrap_or(-1),
+        stdout: String::new(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// A closed pipe on standard output ends a command quietly: status 0, no panic.
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    let dir = workspace(&[]);
+    for name in ["a.png", "b.png"] {
+        let run = lumiere(
+            &[
+                "render",
+                "cornell-box",
+                "--width",
+                "16",
+                "--height",
+                "16",
+                "-o",
+                name,
+            ],
+            dir.path(),
+        );
+        assert_eq!(run.code, 0, "{}", run.stderr);
+    }
+    for args in [
+        &["list"][..],
+        &["list", "--json"],
+        &["compare", "a.png", "b.png", "--json"],
+        &["compare", "a.png", "b.png"],
+        &["form-factors", "cornell-box", "--method", "analytic"],
+        &["shadow-polygons", "cornell-box-point"],
+        &["render", "shadow-map-curved", "--aov", "list", "-o", "-"],
+    ] {
+        let run = lumiere_into_closed_pipe(args, dir.path());
+        assert!(!run.stderr.contains("panicked"), "{args:?}: {}", run.stderr);
+        assert_eq!(run.code, 0, "{args:?}: {}", run.stderr);
+        assert_eq!(run.stderr, "", "{args:?}");
+    }
+}
+
+/// `compare` as a regression test's check: the figures, then one error line naming the
+/// threshold exceeded and the measured value; 0 within, 1 beyond, 2 for bad input.
+#[test]
+fn compare_fails_beyond_its_thresholds() {
+    let dir = workspace(&[("broken.png", "not an image")]);
+    let sized = |name: &str, extra: &[&str]| {
+        let mut args = vec!["render", "cornell-box", "--height", "20"];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["-o", name]);
+        let run = lumiere(&args, dir.path());
+        assert_eq!(run.code, 0, "{}", run.stderr);
+    };
+    sized("a.png", &["--width", "24"]);
+    sized("b.png", &["--width", "24", "--set", "render.exposure=1.5"]);
+    sized("small.png", &["--width", "8"]);
+    let within = lumiere(
+        &[
+            "compare",
+            "a.png",
+            "a.png",
+            "--max-rmse",
+            "0",
+            "--max-difference",
+            "0",
+            "--max-differing",
+            "0",
+        ],
+        dir.path(),
+    );
+    assert_eq!(within.code, 0, "{}", within.stderr);
+    assert!(within.stdout.contains("rmse"));
+    assert_eq!(within.stderr, "");
+
+    let figures = lumiere(&["compare", "a.png", "b.png", "--json"], dir.path());
+    assert_eq!(figures.code, 0, "{}", figures.stderr);
+    let figures: serde_json::Value = serde_json::from_str(&figures.stdout).unwrap();
+    let largest = figures["max_difference"].as_u64().unwrap();
+    assert!(largest > 2, "{figures}");
+
+    let beyond = lumiere(
+        &["compare", "a.png", "b.png", "--max-difference", "2"],
+        dir.path(),
+    );
+    assert_eq!(beyond.code, 1, "{}", beyond.stderr);
+    assert!(
+        beyond.stdout.contains("max difference"),
+        "{}",
+        beyond.stdout
+    );
+    assert_clear_error(&beyond, "--max-difference 2", &dir.path().join("nothing"));
+    assert!(
+        beyond.stderr.contains(&format!("{largest}/255")),
+        "{}",
+        beyond.stderr
+    );
+    // A threshold not exceeded is not named.
+    let one = lumiere(
+        &[
+            "compare",
+            "a.png",
+            "b.png",
+            "--json",
+            "--max-rmse",
+            "0",
+            "--max-difference",
+            "255",
+        ],
+        dir.path(),
+    );
+    assert_eq!(one.code, 1, "{}", one.stderr);
+    serde_json::from_str::<serde_json::Value>(&one.stdout).expect("the figures as JSON");
+    assert_clear_error(&one, "--max-rmse 0", &dir.path().join("nothing"));
+    assert!(!one.stderr.contains("--max-difference"), "{}", one.stderr);
+    let share = lumiere(
+        &["compare", "a.png", "b.png", "--max-differing", "0.001"],
+        dir.path(),
+    );
+    assert_eq!(share.code, 1, "{}", share.stderr);
+    assert_clear_error(&share, "--max-differing 0.001", &dir.path().join("nothing"));
+
+    for (args, fragment) in [
+        (&["compare", "broken.png", "a.png"][..], "broken.png"),
+        (
+            &["compare", "missing.png", "a.png", "--max-rmse", "0.1"],
+            "missing.png",
+        ),
+        (&["compare", "a.png", "small.png", "--max-rmse", "0.1"], "8"),
+        (
+            &["compare", "a.png", "b.png", "--max-differing", "1.5"],
+            "--max-differing",
+        ),
+        (
+            &["compare", "a.png", "b.png", "--max-rmse=-1"],
+            "--max-rmse",
+        ),
+    ] {
+        let run = lumiere(args, dir.path());
+        assert_eq!(run.code, 2, "{args:?}: {}", run.stderr);
+        assert_clear_error(&run, fragment, &dir.path().join("nothing"));
+    }
+}
+
+/// The README's regression check: a render at the entry's test size against its golden.
+#[test]
+fn the_readme_compare_example_works() {
+    let dir = workspace(&[]);
+    let run = lumiere(
+        &["render", "cornell-box", "--test-size", "-o", "out.png"],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let golden = concat!(env!("CARGO_MANIFEST_DIR"), "/golden/cornell-box.png");
+    let run = lumiere(
+        &[
+            "compare",
+            "out.png",
+            golden,
+            "--diff",
+            "diff.png",
+            "--max-difference",
+            "2",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(dir.path().join("diff.png").exists());
+}
+
+/// `--set` changes what the scene defines: a misspelt material or texture name (an
+/// entry nothing uses) is refused with the nearest name, while new settings tables,
+/// a material an object is given, and an OBJ model's MTL material are accepted.
+#[test]
+fn overrides_refuse_entries_nothing_uses() {
+    let grey = scene(CAMERA, "");
+    let files = [("s.toml", grey.as_str())];
+    render_error(
+        &files,
+        &["s.toml", "--set", "materials.gery.diffuse=[1, 0, 0]"],
+        "no material `gery` that anything uses (did you mean `grey`?)",
+    );
+    render_error(
+        &[],
+        &[
+            "perspective-texture",
+            "--set",
+            "materials.afine.interpolation=perspective",
+        ],
+        "did you mean `affine`?",
+    );
+    render_error(
+        &[],
+        &[
+            "perspective-texture",
+            "--set",
+            "textures.chekcs.filter=nearest",
+        ],
+        "did you mean `checks`?",
+    );
+    render_error(
+        &files,
+        &["s.toml", "--set", "objects.3.material=grey"],
+        "past the end",
+    );
+    let dir = workspace(&files);
+    for args in [
+        &[
+            "s.toml",
+            "--set",
+            "materials.red.diffuse=[0.8, 0.1, 0.1]",
+            "--set",
+            "objects.0.material=red",
+        ][..],
+        &[
+            "s.toml",
+            "--set",
+            "shadows.light_samples=8",
+            "--set",
+            "render.band_rows=7",
+        ],
+        &[
+            "cornell-box",
+            "--width",
+            "16",
+            "--height",
+            "16",
+            "--set",
+            "materials.white.diffuse=[0.2, 0.2, 0.9]",
+        ],
+    ] {
+        let mut all = vec!["render"];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&["-o", "ok.png"]);
+        let run = lumiere(&all, dir.path());
+        assert_eq!(run.code, 0, "{args:?}: {}", run.stderr);
+    }
+}
+
+/// `--steps`, `--ambient` and `--frames` are the shooting solver's; with gathering they
+/// would do nothing, so they are refused.
+#[test]
+fn shooting_options_are_refused_with_gathering() {
+    for (option, fragment) in [
+        (
+            &["--steps", "5"][..],
+            "--steps belongs to the shooting solver",
+        ),
+        (&["--ambient"], "--ambient belongs to the shooting solver"),
+        (
+            &["--frames", "steps"],
+            "--frames belongs to the shooting solver",
+        ),
+    ] {
+        let mut args = vec!["radiosity-gathering"];
+        args.extend_from_slice(option);
+        render_error(&[], &args, fragment);
+        let mut args = vec!["cornell-box", "--radiosity", "gathering"];
+        args.extend_from_slice(option);
+        render_error(&[], &args, fragment);
+    }
+}

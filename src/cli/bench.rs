@@ -33,15 +33,19 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
-    println!("threads: {}", rayon::current_num_threads());
+    outln!("threads: {}", rayon::current_num_threads())?;
     if !args.radiosity_elements.is_empty() {
         let runs = args.runs.min(3);
         return super::bench_radiosity::run(&args.scenes[0], &args.radiosity_elements, runs);
     }
-    println!(
+    outln!(
         "{:<26} {:<15} {:>10} {:>12} {:>14}",
-        "scene", "variant", "size", "render (ms)", "fill (Mpix/s)"
-    );
+        "scene",
+        "variant",
+        "size",
+        "render (ms)",
+        "fill (Mpix/s)"
+    )?;
     for scene_name in &args.scenes {
         for (label, variant) in variants(&args, scene_name)? {
             for &size in &args.sizes {
@@ -53,7 +57,7 @@ pub fn run(args: Args) -> Result<()> {
                 let scene = load_scene(scene_name, &sets)?;
                 // A method that refuses one of the scene's lights has nothing to time.
                 if let Err(lumiere::Error::Unsupported(refusal)) = render::render(&scene) {
-                    println!("{scene_name:<26} {label:<15} refused: {refusal}");
+                    outln!("{scene_name:<26} {label:<15} refused: {refusal}")?;
                     break;
                 }
                 render::render(&scene)?;
@@ -61,14 +65,14 @@ pub fn run(args: Args) -> Result<()> {
                     let _ = std::hint::black_box(render::render(&scene));
                 });
                 let fill = fill_rate(&scene, args.runs);
-                println!(
+                outln!(
                     "{:<26} {:<15} {:>10} {:>12.2} {:>14.1}",
                     scene_name,
                     label,
                     format!("{size}x{size}"),
                     full.as_secs_f64() * 1e3,
                     fill
-                );
+                )?;
             }
         }
     }

@@ -15,7 +15,7 @@ pub fn run(scene_name: &str, counts: &[usize], runs: usize) -> Result<()> {
     if base.radiosity.is_none() {
         bail!("{scene_name} has no [radiosity] table to time");
     }
-    println!(
+    outln!(
         "{:<22} {:>9} {:>8} {:>6} {:>13} {:>17} {:>12}",
         "radiosity scene",
         "elements",
@@ -24,7 +24,7 @@ pub fn run(scene_name: &str, counts: &[usize], runs: usize) -> Result<()> {
         "shooting (s)",
         "gathering FF (s)",
         "GS solve (s)"
-    );
+    )?;
     for &count in counts {
         let scene = with_element_count(&base, count)?;
         let settings = scene.radiosity.as_ref().expect("checked above");
@@ -46,7 +46,7 @@ pub fn run(scene_name: &str, counts: &[usize], runs: usize) -> Result<()> {
             settings.tolerance,
             settings.memory_budget,
         )?;
-        println!(
+        outln!(
             "{:<22} {:>9} {:>8} {:>6} {:>13.2} {:>17.2} {:>12.4}",
             scene_name,
             mesh.elements.len(),
@@ -55,7 +55,7 @@ pub fn run(scene_name: &str, counts: &[usize], runs: usize) -> Result<()> {
             shooting.as_secs_f64(),
             g.form_factor_time.as_secs_f64(),
             g.solve_time.as_secs_f64()
-        );
+        )?;
     }
     Ok(())
 }

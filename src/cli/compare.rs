@@ -1,11 +1,17 @@
-//! `lumiere compare`: how far apart two images are.
+//! `lumiere compare`: how far apart two images are, and whether that is within the
+//! thresholds a regression test allows.
 
-use anyhow::Result;
-use lumiere::output;
+use anyhow::{Result, bail};
+use lumiere::output::{self, Comparison};
 use std::path::PathBuf;
 
 /// Compare two images (PNG, PFM or EXR): RMSE, PSNR, largest channel difference and the
 /// share of pixels differing by more than 2/255, on their 8-bit sRGB values.
+///
+/// With thresholds (--max-rmse, --max-difference, --max-differing) the figures are
+/// printed as usual, then, if any is exceeded, one line `error: …` naming it.
+/// Exit status: 0 within the thresholds (or none given), 1 beyond them, 2 for bad
+/// input (an unreadable image, images of different sizes, a bad option).
 #[derive(clap::Args, Debug)]
 pub struct Args {
     a: PathBuf,
@@ -22,9 +28,35 @@ pub struct Args {
     /// Print the figures as JSON.
     #[arg(long)]
     json: bool,
+    /// Fail (exit 1) if the RMSE, in [0, 1], is above X.
+    #[arg(long, value_name = "X")]
+    max_rmse: Option<f64>,
+    /// Fail (exit 1) if a channel differs by more than N/255.
+    #[arg(long, value_name = "N")]
+    max_difference: Option<u8>,
+    /// Fail (exit 1) if more than FRACTION (in [0, 1]) of the pixels differ by more
+    /// than 2/255.
+    #[arg(long, value_name = "FRACTION")]
+    max_differing: Option<f64>,
 }
 
+/// The images differ by more than the thresholds allow: exit status 1, where bad
+/// input is 2.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct BeyondThresholds(String);
+
 pub fn run(args: Args) -> Result<()> {
+    if let Some(x) = args.max_rmse
+        && !(0.0..=1.0).contains(&x)
+    {
+        bail!("--max-rmse {x}: must be between 0 and 1");
+    }
+    if let Some(f) = args.max_differing
+        && !(0.0..=1.0).contains(&f)
+    {
+        bail!("--max-differing {f}: must be a fraction between 0 and 1");
+    }
     let a = output::load(&args.a)?;
     let b = output::load(&args.b)?;
     let c = output::compare(&a, &b, args.exposure)?;
@@ -36,15 +68,59 @@ pub fn run(args: Args) -> Result<()> {
         )?;
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&c)?);
+        outln!("{}", serde_json::to_string_pretty(&c)?)?;
     } else {
-        println!("rmse            {:.6}", c.rmse);
-        println!("psnr            {:.2} dB", c.psnr);
-        println!("max difference  {}/255", c.max_difference);
-        println!(
+        outln!("rmse            {:.6}", c.rmse)?;
+        outln!("psnr            {:.2} dB", c.psnr)?;
+        outln!("max difference  {}/255", c.max_difference)?;
+        outln!(
             "differing       {:.4}% of pixels (> 2/255)",
             100.0 * c.differing_share
-        );
+        )?;
+    }
+    let exceeded = exceeded(&args, &c);
+    if !exceeded.is_empty() {
+        return Err(BeyondThresholds(format!(
+            "{} and {} differ beyond the threshold{}: {}",
+            args.a.display(),
+            args.b.display(),
+            if exceeded.len() == 1 { "" } else { "s" },
+            exceeded.join(", ")
+        ))
+        .into());
     }
     Ok(())
+}
+
+/// The exit status of a failed comparison: 1 beyond the thresholds, 2 for bad input
+/// (as `cmp` and `diff` do).
+pub fn failure_status(error: &anyhow::Error) -> u8 {
+    if error.is::<BeyondThresholds>() { 1 } else { 2 }
+}
+
+/// Each threshold exceeded, with the measured value.
+fn exceeded(args: &Args, c: &Comparison) -> Vec<String> {
+    let mut beyond = Vec::new();
+    if let Some(x) = args.max_rmse
+        && c.rmse > x
+    {
+        beyond.push(format!("rmse {:.6} > --max-rmse {x}", c.rmse));
+    }
+    if let Some(n) = args.max_difference
+        && c.max_difference > n
+    {
+        beyond.push(format!(
+            "max difference {}/255 > --max-difference {n}",
+            c.max_difference
+        ));
+    }
+    if let Some(f) = args.max_differing
+        && c.differing_share > f
+    {
+        beyond.push(format!(
+            "differing {:.6} of pixels > --max-differing {f}",
+            c.differing_share
+        ));
+    }
+    beyond
 }

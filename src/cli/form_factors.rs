@@ -55,19 +55,19 @@ pub fn run(args: Args) -> Result<()> {
             "patches": patches,
             "factors": matrix,
         });
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&report)?)?;
     } else {
-        print!("{:<24}{:>12}", "from \\ to", "area");
+        out!("{:<24}{:>12}", "from \\ to", "area")?;
         for name in &names {
-            print!(" {:>10.10}", name);
+            out!(" {:>10.10}", name)?;
         }
-        println!();
+        outln!()?;
         for ((row, name), p) in matrix.iter().zip(&names).zip(&mesh.patches) {
-            print!("{name:<24.24}{:>12.4}", p.area);
+            out!("{name:<24.24}{:>12.4}", p.area)?;
             for f in row {
-                print!(" {f:>10.6}");
+                out!(" {f:>10.6}")?;
             }
-            println!("   sum {:.6}", row.iter().sum::<f64>());
+            outln!("   sum {:.6}", row.iter().sum::<f64>())?;
         }
     }
     Ok(())

@@ -15,7 +15,7 @@ pub fn run(args: Args) -> Result<()> {
     let entries = catalogue::entries()?;
     if args.json {
         let tables: Vec<_> = entries.iter().map(|e| &e.algorithm).collect();
-        println!("{}", serde_json::to_string_pretty(&tables)?);
+        outln!("{}", serde_json::to_string_pretty(&tables)?)?;
         return Ok(());
     }
     let width = entries
@@ -25,7 +25,7 @@ pub fn run(args: Args) -> Result<()> {
         .unwrap_or(0);
     for e in &entries {
         let a = &e.algorithm;
-        println!("{:width$}  {}  {}", a.id, a.year, a.title);
+        outln!("{:width$}  {}  {}", a.id, a.year, a.title)?;
     }
     Ok(())
 }

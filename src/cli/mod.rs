@@ -1,5 +1,23 @@
 //! The command line: one file per subcommand.
 
+/// `println!` that hands back the write's error instead of panicking: a reader that
+/// closes the pipe early (`lumiere list | head -1`) ends the command quietly (see
+/// `main`).
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout(), $($arg)*)
+    }};
+}
+
+/// `print!` that hands back the write's error, as `outln!`.
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        write!(std::io::stdout(), $($arg)*)
+    }};
+}
+
 mod bench;
 mod bench_radiosity;
 mod compare;
@@ -33,6 +51,27 @@ enum Command {
     Bench(bench::Args),
     ShadowPolygons(shadow_polygons::Args),
     FormFactors(form_factors::Args),
+}
+
+impl Cli {
+    /// How this command's failures map to an exit status: 1, except for `compare`
+    /// (1 beyond its thresholds, 2 for bad input).
+    pub fn failure_status(&self) -> fn(&anyhow::Error) -> u8 {
+        match self.command {
+            Command::Compare(_) => compare::failure_status,
+            _ => |_| 1,
+        }
+    }
+}
+
+/// Whether `error` comes from writing to a reader that has gone away (a closed pipe):
+/// the conventional ending is a quiet one, not an error.
+pub fn is_broken_pipe(error: &anyhow::Error) -> bool {
+    error.chain().any(|cause| {
+        cause
+            .downcast_ref::<std::io::Error>()
+            .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+    })
 }
 
 pub fn run(cli: Cli) -> Result<()> {

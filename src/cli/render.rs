@@ -114,6 +114,11 @@ pub fn run(args: Args) -> Result<()> {
     let scene = load_scene(&args.scene, &sets)?;
     let exposure = scene.render.exposure;
     let radiosity = scene.radiosity.clone();
+    if let Some(settings) = &radiosity
+        && settings.solver == Solver::Gathering
+    {
+        refuse_shooting_options(&args)?;
+    }
     let mut renderer = Renderer::new(scene);
     renderer.check()?;
     renderer.set_hemicube_element(args.hemicube_element);
@@ -141,7 +146,7 @@ pub fn run(args: Args) -> Result<()> {
         None => Ok(output::save(&renderer.render()?, &args.output, exposure)?),
         Some("list") => {
             for info in available_buffers(&renderer)? {
-                println!("{:<28} {}", info.name, info.description);
+                outln!("{:<28} {}", info.name, info.description)?;
             }
             Ok(())
         }
@@ -173,6 +178,27 @@ pub fn run(args: Args) -> Result<()> {
             Ok(output::save(&buffer.to_image(format), &args.output, 1.0)?)
         }
     }
+}
+
+/// `--steps`, `--ambient` and `--frames` are the shooting solver's: gathering solves
+/// the whole system at once, has no steps to stop after or show, and no ambient term.
+fn refuse_shooting_options(args: &Args) -> Result<()> {
+    let given: Vec<&str> = [
+        (args.steps.is_some(), "--steps"),
+        (args.ambient, "--ambient"),
+        (args.frames.is_some(), "--frames"),
+    ]
+    .into_iter()
+    .filter_map(|(given, name)| given.then_some(name))
+    .collect();
+    if !given.is_empty() {
+        bail!(
+            "{} belong{} to the shooting solver (--radiosity shooting); this scene is solved by gathering",
+            given.join(", "),
+            if given.len() == 1 { "s" } else { "" }
+        );
+    }
+    Ok(())
 }
 
 /// The radiosity options as scene-key overrides.

@@ -38,17 +38,25 @@ pub fn run(args: Args) -> Result<()> {
     }
     if args.json {
         let report = serde_json::json!({ "light": light.to_array(), "receivers": receivers });
-        println!("{}", serde_json::to_string_pretty(&report)?);
+        outln!("{}", serde_json::to_string_pretty(&report)?)?;
     } else if args.png.is_none() {
-        println!(
+        outln!(
             "{:>7}  {:<28} {:>14} {:>14} {:>14}",
-            "polygon", "object", "area", "lit", "shadowed"
-        );
+            "polygon",
+            "object",
+            "area",
+            "lit",
+            "shadowed"
+        )?;
         for r in &receivers {
-            println!(
+            outln!(
                 "{:>7}  {:<28} {:>14.4} {:>14.4} {:>14.4}",
-                r.polygon, r.object, r.area, r.lit_area, r.shadowed_area
-            );
+                r.polygon,
+                r.object,
+                r.area,
+                r.lit_area,
+                r.shadowed_area
+            )?;
         }
     }
     Ok(())

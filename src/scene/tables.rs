@@ -2,6 +2,7 @@
 //! a base table under another (catalogue `extends`), and `--set key=value` overrides.
 
 use crate::{Error, Result};
+use std::collections::BTreeSet;
 use toml::{Table, Value};
 
 /// Parses TOML text; an error names `origin:line:column`.
@@ -34,6 +35,8 @@ pub fn merge(base: &mut Table, over: Table) {
 /// Applies `key.path=value`. The value is read as TOML (`64`, `[1, 2, 3]`, `"x"`);
 /// a bare word that is not TOML is taken as a string. Array elements are named by
 /// their index (`objects.0.material=red`).
+/// An index past the end of an array is refused; a new entry of a named collection
+/// (`materials.NAME`) is made here and checked by `load_scene` (see [`NAMED`]).
 pub fn set(table: &mut Table, assignment: &str) -> Result<()> {
     let refuse = |message: String| Error::Override {
         assignment: assignment.to_string(),
@@ -83,6 +86,56 @@ pub fn set(table: &mut Table, assignment: &str) -> Result<()> {
     unreachable!("the loop returns at the last key")
 }
 
+/// The scene's named collections. An override that adds an entry nothing uses
+/// (`materials.flor.diffuse=...` for `floor`) would change nothing, so `load_scene`
+/// refuses it with the nearest name the scene defines; settings tables (`shadows`,
+/// `render`, ...) may be created freely.
+pub const NAMED: [&str; 2] = ["materials", "textures"];
+
+/// The (collection, name) of every entry of the named collections.
+pub fn named_entries(table: &Table) -> BTreeSet<(&'static str, String)> {
+    NAMED
+        .iter()
+        .filter_map(|c| Some((*c, table.get(*c)?.as_table()?)))
+        .flat_map(|(c, t)| t.keys().map(move |name| (c, name.clone())))
+        .collect()
+}
+
+/// "the scene defines no material `flor` that anything uses", with the nearest of
+/// `defined` or, when none is near, all of them.
+pub fn not_defined<'a>(
+    collection: &str,
+    name: &str,
+    defined: impl IntoIterator<Item = &'a str>,
+) -> String {
+    let defined: Vec<&str> = defined.into_iter().collect();
+    let kind = collection.trim_end_matches('s');
+    let mut message = format!("the scene defines no {kind} `{name}` that anything uses");
+    if let Some(near) = nearest(defined.iter().copied(), name) {
+        message += &format!(" (did you mean `{near}`?)");
+    } else if defined.is_empty() {
+        message += &format!(" (it has no {collection})");
+    } else {
+        let names: Vec<_> = defined.iter().map(|k| format!("`{k}`")).collect();
+        message += &format!(" (it defines {})", names.join(", "));
+    }
+    message
+}
+
+/// The candidate closest to `word` by edit distance, if it is close enough to be a
+/// plausible misspelling (at most half the longer word's letters differ).
+pub(crate) fn nearest<'a>(
+    candidates: impl IntoIterator<Item = &'a str>,
+    word: &str,
+) -> Option<&'a str> {
+    candidates
+        .into_iter()
+        .map(|c| (strsim::levenshtein(c, word), c))
+        .min()
+        .filter(|(distance, c)| *distance <= c.len().max(word.len()) / 2)
+        .map(|(_, c)| c)
+}
+
 enum Slot<'a> {
     Table(&'a mut Table),
     Array(&'a mut Vec<Value>),
@@ -130,6 +183,29 @@ mod tests {
         assert!(set(&mut t, "objects.3.material=red").is_err());
         assert!(set(&mut t, "camera.width.x=1").is_err());
         assert!(set(&mut t, "nothing").is_err());
+    }
+
+    #[test]
+    fn named_entries_and_suggestions() {
+        let mut t = parse("[materials.floor]\n[textures.affine]\n", "t").unwrap();
+        set(&mut t, "materials.flor.diffuse=[1, 0, 0]").unwrap();
+        let names: Vec<_> = named_entries(&t).into_iter().collect();
+        assert_eq!(
+            names,
+            [
+                ("materials", "floor".to_string()),
+                ("materials", "flor".to_string()),
+                ("textures", "affine".to_string())
+            ]
+        );
+        let m = not_defined("materials", "flor", ["floor", "wall"]);
+        assert!(
+            m.contains("no material `flor`") && m.contains("did you mean `floor`"),
+            "{m}"
+        );
+        let m = not_defined("textures", "zzz", ["floor", "wall"]);
+        assert!(m.contains("`floor`, `wall`"), "{m}");
+        assert!(not_defined("textures", "x", []).contains("it has no textures"));
     }
 
     #[test]
