@@ -81,9 +81,8 @@ fn exact_share(p: DVec3) -> f64 {
     (whole - hidden) / whole
 }
 
-/// RMS error of the ray-cast share against the exact one over the penumbra, and
-/// the largest error in the umbra and in full light.
-fn errors(samples: u32) -> (f64, f64, usize) {
+/// The scene with `samples` × `samples` light samples, and its floor's object index.
+fn soft_scene(samples: u32) -> (lumiere::Scene, usize) {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("soft.toml");
     std::fs::write(&path, SCENE).unwrap();
@@ -94,6 +93,13 @@ fn errors(samples: u32) -> (f64, f64, usize) {
         .iter()
         .position(|o| o.name == "floor")
         .unwrap();
+    (scene, floor)
+}
+
+/// RMS error of the ray-cast share against the exact one over the penumbra, and
+/// the largest error in the umbra and in full light.
+fn errors(samples: u32) -> (f64, f64, usize) {
+    let (scene, floor) = soft_scene(samples);
     let (view, surface) = visible_surface(&scene);
     let visibility =
         lumiere::shadow::compute(&scene, &view, &surface, ShadowMethod::RayCast).unwrap();
@@ -145,15 +151,7 @@ fn the_sampled_penumbra_converges_to_the_exact_one() {
 fn the_visible_part_of_an_emitter_shades_exactly() {
     use lumiere::raster::{LightVisibility, Visibility, VisiblePart};
     use lumiere::shading::FrameShading;
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("soft.toml");
-    std::fs::write(&path, SCENE).unwrap();
-    let scene = lumiere::load_scene(path.to_str().unwrap(), &[]).unwrap();
-    let floor = scene
-        .objects
-        .iter()
-        .position(|o| o.name == "floor")
-        .unwrap();
+    let (scene, floor) = soft_scene(4);
     let (view, surface) = visible_surface(&scene);
     let on_floor = |k: usize| {
         let s = &surface.samples[k];
