@@ -146,7 +146,7 @@ pub enum Error {
     /// `patches` of them) than the `budget` allows.
     #[error(
         "gathering would store {} form factors ({:.1} GiB) for {elements} elements and {patches} patches, more than the {:.1} GiB allowed; use the shooting solver (O(n) memory) or coarser patches",
-        *elements as u64 * *patches as u64,
+        (*elements as u64).saturating_mul(*patches as u64),
         gib(*needed),
         gib(*budget)
     )]
@@ -155,6 +155,23 @@ pub enum Error {
         patches: usize,
         needed: u64,
         budget: u64,
+    },
+
+    /// A setting (`key`, set to `value`) that would need `needed` bytes for `what`,
+    /// more than the `budget` that `budget_key` allows.
+    #[error(
+        "{key} = {value} would need about {} for {what}, more than the {} that {budget_key} allows; {suggestion}",
+        bytes(*needed),
+        bytes(*budget)
+    )]
+    OverBudget {
+        key: String,
+        value: String,
+        what: String,
+        needed: u64,
+        budget: u64,
+        budget_key: String,
+        suggestion: String,
     },
 
     /// A frame was asked for a buffer it does not make; `known` are those it does.
@@ -285,6 +302,15 @@ fn did_you_mean(suggestion: &Option<String>) -> String {
     match suggestion {
         Some(s) => format!("; did you mean `{s}`?"),
         None => String::new(),
+    }
+}
+
+/// A byte count for people: MiB below a GiB, GiB above.
+fn bytes(n: u64) -> String {
+    if n >= 1 << 30 {
+        format!("{:.1} GiB", gib(n))
+    } else {
+        format!("{:.1} MiB", n as f64 / (1u64 << 20) as f64)
     }
 }
 
