@@ -30,6 +30,24 @@ impl std::fmt::Display for Unsupported {
 
 impl std::error::Error for Unsupported {}
 
+/// A setting (`key`, set to `value`) that would need `needed` bytes for `what`,
+/// more than the `budget` that `budget_key` allows.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "{key} = {value} would need about {} for {what}, more than the {} that {budget_key} allows; {suggestion}",
+    bytes(*needed),
+    bytes(*budget)
+)]
+pub struct OverBudget {
+    pub key: String,
+    pub value: String,
+    pub what: String,
+    pub needed: u64,
+    pub budget: u64,
+    pub budget_key: String,
+    pub suggestion: String,
+}
+
 /// What the library reports.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
@@ -157,22 +175,9 @@ pub enum Error {
         budget: u64,
     },
 
-    /// A setting (`key`, set to `value`) that would need `needed` bytes for `what`,
-    /// more than the `budget` that `budget_key` allows.
-    #[error(
-        "{key} = {value} would need about {} for {what}, more than the {} that {budget_key} allows; {suggestion}",
-        bytes(*needed),
-        bytes(*budget)
-    )]
-    OverBudget {
-        key: String,
-        value: String,
-        what: String,
-        needed: u64,
-        budget: u64,
-        budget_key: String,
-        suggestion: String,
-    },
+    /// A setting that would need more memory than its budget allows.
+    #[error(transparent)]
+    OverBudget(Box<OverBudget>),
 
     /// A frame was asked for a buffer it does not make; `known` are those it does.
     #[error("this scene's frame has no buffer `{name}`; it has: {}", known.join(", "))]

@@ -1006,7 +1006,11 @@ fn counts_that_drive_allocations_are_checked_first() {
             ),
         );
         render_error(&[("s.toml", &text)], &["s.toml"], "objects[1]");
-        render_error(&[("s.toml", &text)], &["s.toml"], "resolution from");
+        render_error(
+            &[("s.toml", &text)],
+            &["s.toml"],
+            "objects[1]: resolution must be from",
+        );
     }
     let text = scene(
         CAMERA,

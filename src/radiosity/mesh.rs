@@ -181,7 +181,7 @@ impl Mesh {
                 Division::Whole => patches.describe("patch_size"),
                 _ => elements.describe("element_size"),
             };
-            return Err(Error::OverBudget {
+            return Err(Error::OverBudget(Box::new(crate::error::OverBudget {
                 key,
                 value,
                 what: format!(
@@ -194,7 +194,7 @@ impl Mesh {
                 suggestion:
                     "use a larger element_size or patch_size, or raise radiosity.max_memory_mb"
                         .into(),
-            });
+            })));
         }
         let mut mesh = Mesh::default();
         for (id, polygon) in scene.polygons.iter().enumerate() {

@@ -62,7 +62,7 @@ pub fn mesh(scene: &Scene, settings: &Settings) -> Result<Mesh> {
     }
     let hemicubes = hemicube_bytes(settings);
     if hemicubes > settings.memory_budget {
-        return Err(Error::OverBudget {
+        return Err(Error::OverBudget(Box::new(crate::error::OverBudget {
             key: "radiosity.resolution".into(),
             value: settings.resolution.to_string(),
             what: format!(
@@ -73,7 +73,7 @@ pub fn mesh(scene: &Scene, settings: &Settings) -> Result<Mesh> {
             budget: settings.memory_budget,
             budget_key: "radiosity.max_memory_mb".into(),
             suggestion: "use a lower resolution, or raise radiosity.max_memory_mb".into(),
-        });
+        })));
     }
     let mesh = Mesh::build_within(
         scene,

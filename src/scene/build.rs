@@ -63,7 +63,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         let needed = 24 * (s.map_resolution as u64).pow(2);
         let budget = s.max_memory_mb.saturating_mul(1 << 20);
         if needed > budget {
-            return Err(Error::OverBudget {
+            return Err(Error::OverBudget(Box::new(crate::error::OverBudget {
                 key: "shadows.map_resolution".into(),
                 value: s.map_resolution.to_string(),
                 what: "each light's six shadow-map faces".into(),
@@ -71,7 +71,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
                 budget,
                 budget_key: "shadows.max_memory_mb".into(),
                 suggestion: "use a lower map_resolution, or raise shadows.max_memory_mb".into(),
-            });
+            })));
         }
     }
     ensure_valid!(
@@ -210,7 +210,7 @@ impl Builder {
                 ensure_valid!(
                     (4..=MAX_RESOLUTION).contains(&resolution),
                     "resolution",
-                    "a sphere needs a resolution from 4 to {MAX_RESOLUTION}, got {resolution}"
+                    "resolution must be from 4 to {MAX_RESOLUTION} for a sphere, got {resolution}"
                 );
                 shapes::sphere(resolution, smooth)
             }
@@ -218,7 +218,7 @@ impl Builder {
                 ensure_valid!(
                     (3..=MAX_RESOLUTION).contains(&resolution),
                     "resolution",
-                    "a cylinder needs a resolution from 3 to {MAX_RESOLUTION}, got {resolution}"
+                    "resolution must be from 3 to {MAX_RESOLUTION} for a cylinder, got {resolution}"
                 );
                 shapes::cylinder(resolution, o.caps.unwrap_or(true), smooth)
             }
