@@ -30,6 +30,24 @@ impl std::fmt::Display for Unsupported {
 
 impl std::error::Error for Unsupported {}
 
+/// A setting (`key`, set to `value`) that would need `needed` bytes for `what`,
+/// more than the `budget` that `budget_key` allows.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "{key} = {value} would need about {} for {what}, more than the {} that {budget_key} allows; {suggestion}",
+    bytes(*needed),
+    bytes(*budget)
+)]
+pub struct OverBudget {
+    pub key: String,
+    pub value: String,
+    pub what: String,
+    pub needed: u64,
+    pub budget: u64,
+    pub budget_key: String,
+    pub suggestion: String,
+}
+
 /// What the library reports.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
@@ -146,7 +164,7 @@ pub enum Error {
     /// `patches` of them) than the `budget` allows.
     #[error(
         "gathering would store {} form factors ({:.1} GiB) for {elements} elements and {patches} patches, more than the {:.1} GiB allowed; use the shooting solver (O(n) memory) or coarser patches",
-        *elements as u64 * *patches as u64,
+        (*elements as u64).saturating_mul(*patches as u64),
         gib(*needed),
         gib(*budget)
     )]
@@ -156,6 +174,10 @@ pub enum Error {
         needed: u64,
         budget: u64,
     },
+
+    /// A setting that would need more memory than its budget allows.
+    #[error(transparent)]
+    OverBudget(Box<OverBudget>),
 
     /// A frame was asked for a buffer it does not make; `known` are those it does.
     #[error("this scene's frame has no buffer `{name}`; it has: {}", known.join(", "))]
@@ -285,6 +307,15 @@ fn did_you_mean(suggestion: &Option<String>) -> String {
     match suggestion {
         Some(s) => format!("; did you mean `{s}`?"),
         None => String::new(),
+    }
+}
+
+/// A byte count for people: MiB below a GiB, GiB above.
+fn bytes(n: u64) -> String {
+    if n >= 1 << 30 {
+        format!("{:.1} GiB", gib(n))
+    } else {
+        format!("{:.1} MiB", n as f64 / (1u64 << 20) as f64)
     }
 }
 

@@ -23,7 +23,7 @@ pub mod texture;
 use scene::resources::{Directory, Layered};
 use std::path::Path;
 
-pub use error::{Error, FileOp, Result};
+pub use error::{Error, FileOp, OverBudget, Result};
 pub use output::Image;
 pub use render::render;
 pub use scene::Scene;

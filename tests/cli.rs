@@ -1238,3 +1238,79 @@ fn shooting_options_are_refused_with_gathering() {
         render_error(&[], &args, fragment);
     }
 }
+
+/// Counts that drive allocations are checked before anything is allocated: one
+/// line naming the setting, its value and what to do, never an abort.
+#[test]
+fn counts_that_drive_allocations_are_checked_first() {
+    for (args, fragment) in [
+        (
+            &["--element-size", "0.0001"][..],
+            "radiosity.element_size = 0.0001 would need",
+        ),
+        (
+            &["--element-size", "1"][..],
+            "radiosity.element_size = 1 would need",
+        ),
+        (
+            &[
+                "--hemicube-resolution",
+                "4096",
+                "--set",
+                "radiosity.max_memory_mb=16",
+            ][..],
+            "radiosity.resolution = 4096 would need",
+        ),
+    ] {
+        let dir = workspace(&[]);
+        let mut all = vec!["render", "radiosity-shooting"];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&["-o", "out.png"]);
+        let run = lumiere(&all, dir.path());
+        assert_clear_error(&run, fragment, &dir.path().join("out.png"));
+        assert!(
+            run.stderr.contains("raise radiosity.max_memory_mb"),
+            "{}",
+            run.stderr
+        );
+    }
+    for shape in ["sphere", "cylinder"] {
+        let text = scene(
+            CAMERA,
+            &format!(
+                "[[objects]]\nshape = \"{shape}\"\nmaterial = \"grey\"\nresolution = 100000\n"
+            ),
+        );
+        render_error(&[("s.toml", &text)], &["s.toml"], "objects[1]");
+        render_error(
+            &[("s.toml", &text)],
+            &["s.toml"],
+            "objects[1]: resolution must be from",
+        );
+    }
+    let text = scene(
+        CAMERA,
+        "\n[shadows]\nmethod = \"shadow-map\"\nmap_resolution = 8192\n",
+    );
+    render_error(
+        &[("s.toml", &text)],
+        &["s.toml"],
+        "shadows.map_resolution = 8192 would need about 1.5 GiB",
+    );
+}
+
+/// A PFM header whose size overflows (or exceeds the data after it) is one error
+/// line naming the file, not a panic or an allocation.
+#[test]
+fn compare_refuses_a_crafted_pfm_header() {
+    let dir = workspace(&[]);
+    std::fs::write(
+        dir.path().join("big.pfm"),
+        b"PF\n4294967295 4294967295\n-1.0\n0123456789ab",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("one.pfm"), b"PF\n1 1\n-1.0\n0123456789ab").unwrap();
+    let run = lumiere(&["compare", "big.pfm", "one.pfm"], dir.path());
+    assert_clear_error(&run, "big.pfm", &dir.path().join("nothing"));
+    assert!(run.stderr.contains("PFM image needs"), "{}", run.stderr);
+}

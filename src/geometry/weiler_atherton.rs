@@ -367,7 +367,9 @@ impl<'a> Clipper<'a> {
                     }
                     used[at] = true;
                     on_a = false;
-                    at = self.a[at].twin.expect("an intersection");
+                    // The walk stopped at an intersection; a missing twin would be
+                    // a broken list (numerical trouble): the caller falls back.
+                    at = self.a[at].twin?;
                 } else {
                     // Walk the clip contour (forwards inside, backwards outside).
                     contour.push(self.b[at].point);
@@ -384,7 +386,7 @@ impl<'a> Clipper<'a> {
                             self.b[at].prev
                         };
                     }
-                    at = self.b[at].twin.expect("an intersection");
+                    at = self.b[at].twin?;
                     on_a = true;
                     if at == start {
                         break;
@@ -491,6 +493,32 @@ mod tests {
             DVec2::new(x + side, y + side),
             DVec2::new(x, y + side),
         ]
+    }
+
+    /// Degenerate operands (repeated and collinear vertices, slivers, coordinates
+    /// near 1e-9 and 1e9) are clipped without a panic.
+    #[test]
+    fn degenerate_operands_do_not_panic() {
+        let p = DVec2::new;
+        let shapes: Vec<Vec<DVec2>> = vec![
+            vec![p(0.0, 0.0), p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)],
+            vec![p(0.0, 0.0), p(0.5, 0.0), p(1.0, 0.0), p(2.0, 0.0)],
+            vec![p(0.0, 0.0), p(1e-9, 0.0), p(1e-9, 1e-9), p(0.0, 1e-9)],
+            vec![p(-1e9, -1e9), p(1e9, -1e9), p(1e9, 1e9), p(-1e9, 1e9)],
+            vec![p(0.0, 0.0), p(1e9, 1e-9), p(1e9, 2e-9)],
+            vec![p(0.5, 0.5), p(0.5, 0.5), p(0.5, 0.5)],
+            vec![p(0.0, 0.0), p(1.0, 1.0), p(1.0, 0.0), p(0.0, 1.0)],
+            square(0.0, 0.0, 1.0),
+            vec![p(1.0, 0.0), p(2.0, 0.0), p(2.0, 1.0), p(1.0, 1.0)],
+        ];
+        for a in &shapes {
+            for b in &shapes {
+                let (i, o) = clip(&vec![a.clone()], &vec![b.clone()]);
+                assert!(area(&i).is_finite() && area(&o).is_finite());
+                let (i, o) = Clipper::new(&vec![a.clone()], &vec![b.clone()]).run();
+                assert!(area(&i).is_finite() && area(&o).is_finite());
+            }
+        }
     }
 
     #[test]

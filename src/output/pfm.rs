@@ -60,10 +60,21 @@ pub fn decode(bytes: &[u8]) -> Result<Image> {
     if width == 0 || height == 0 {
         return Err(Error::image("the image is empty"));
     }
+    // The header's size must match the data there is before anything is allocated
+    // for it: a crafted header (4294967295 x 4294967295) would overflow or exhaust
+    // memory.
+    let needed = (width as u64)
+        .checked_mul(height as u64)
+        .and_then(|count| count.checked_mul(12));
+    let available = bytes.len().saturating_sub(at) as u64;
+    if needed.is_none_or(|n| n > available) {
+        return Err(Error::image(format!(
+            "a {width} x {height} PFM image needs {} bytes of data, only {available} follow its header",
+            needed.map_or("more than 2^64".to_string(), |n| n.to_string())
+        )));
+    }
     let count = width as usize * height as usize;
-    let data = bytes
-        .get(at..at + count * 12)
-        .ok_or_else(|| Error::image("truncated PFM data"))?;
+    let data = &bytes[at..];
     let read = |k: usize| {
         let b = [
             data[4 * k],
@@ -106,5 +117,19 @@ mod tests {
                 .collect(),
         };
         assert_eq!(decode(&encode(&image)).unwrap(), image);
+    }
+
+    /// A header whose size overflows, or does not match the data after it, is an
+    /// error before anything is allocated for it.
+    #[test]
+    fn a_header_that_does_not_match_its_data_is_refused() {
+        for bytes in [
+            &b"PF\n4294967295 4294967295\n-1.0\n0123456789ab"[..],
+            &b"PF\n2 1\n-1.0\n0123456789ab"[..],
+            &b"PF\n4294967295 1\n-1.0\n0123456789ab"[..],
+        ] {
+            let e = decode(bytes).err().unwrap();
+            assert!(e.to_string().contains("PFM image needs"), "{e}");
+        }
     }
 }

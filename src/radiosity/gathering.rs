@@ -37,8 +37,14 @@ pub struct Gathered {
 /// Memory the stored factors need: M × n element factors (f32) and n × n patch
 /// factors (f64).
 pub fn matrix_bytes(mesh: &Mesh) -> u64 {
-    let (m, n) = (mesh.elements.len() as u64, mesh.patches.len() as u64);
-    m * n * 4 + n * n * 8
+    matrix_bytes_for(mesh.elements.len() as u64, mesh.patches.len() as u64)
+}
+
+/// `matrix_bytes` for `m` elements and `n` patches (saturating).
+pub fn matrix_bytes_for(m: u64, n: u64) -> u64 {
+    m.saturating_mul(n)
+        .saturating_mul(4)
+        .saturating_add(n.saturating_mul(n).saturating_mul(8))
 }
 
 pub fn gather(

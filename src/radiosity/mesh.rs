@@ -21,15 +21,71 @@ use std::ops::Range;
 pub use crate::settings::Division;
 
 impl Division {
-    /// Pieces along a side of length `length`.
-    fn pieces(self, length: f64) -> usize {
+    /// Pieces along a side of length `length` (saturating: a count too large to
+    /// cut is refused by `Mesh::count`'s estimate before anything is allocated).
+    fn pieces(self, length: f64) -> u64 {
         match self {
             Division::Whole => 1,
-            Division::Size(size) => ((length / size).ceil() as usize).max(1),
-            Division::Count(n) => n.max(1) as usize,
+            Division::Size(size) => ((length / size).ceil() as u64).max(1),
+            Division::Count(n) => n.max(1) as u64,
+        }
+    }
+
+    /// The scene key and value this division comes from, for messages.
+    fn describe(self, key: &str) -> (String, String) {
+        match self {
+            Division::Whole => (format!("radiosity.{key}"), "absent".into()),
+            Division::Size(size) => (format!("radiosity.{key}"), size.to_string()),
+            Division::Count(n) => (format!("{key}s per side"), n.to_string()),
         }
     }
 }
+
+/// Patches, elements and vertices a mesh would have, counted before it is cut
+/// (saturating at `u64::MAX`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MeshCounts {
+    pub patches: u64,
+    pub elements: u64,
+    pub vertices: u64,
+}
+
+impl MeshCounts {
+    /// Memory the mesh and a solve over it hold, estimated: per patch, the patch,
+    /// its corners, its receiver polygon and its unshot radiosity; per element, the
+    /// element and its corners, its receiver polygon (with centre, area, patch and
+    /// box in the hierarchy), its radiosities (solved and displayed), its entry in
+    /// the vertex-to-element lists and its projected polygon on each hemi-cube face
+    /// (an upper bound; measured peaks are about two thirds of it); per
+    /// vertex, its position, its grid index entry and its element list.
+    pub fn bytes(&self) -> u64 {
+        use crate::raster::ScreenPolygon;
+        use crate::scene::{Polygon, Vertex};
+        use std::mem::size_of;
+        let receiver = size_of::<Polygon>() + 4 * size_of::<Vertex>() + size_of::<DVec3>() + 80;
+        let patch = size_of::<Patch>() + 4 * size_of::<DVec3>() + receiver + size_of::<Vec3>();
+        let element = size_of::<Element>()
+            + 4 * size_of::<u32>()
+            + receiver
+            + 2 * size_of::<Vec3>()
+            + 4 * size_of::<u32>()
+            + 5 * (size_of::<ScreenPolygon>() + 4 * 80);
+        let vertex = size_of::<DVec3>() + 32 + size_of::<Vec<u32>>();
+        self.patches
+            .saturating_mul(patch as u64)
+            .saturating_add(self.elements.saturating_mul(element as u64))
+            .saturating_add(self.vertices.saturating_mul(vertex as u64))
+    }
+
+    fn add(&mut self, patches: u64, elements: u64, vertices: u64) {
+        self.patches = self.patches.saturating_add(patches);
+        self.elements = self.elements.saturating_add(elements);
+        self.vertices = self.vertices.saturating_add(vertices);
+    }
+}
+
+/// The memory budget of `Mesh::build`: the default of `radiosity.max_memory_mb`.
+pub const DEFAULT_MEMORY_BUDGET: u64 = 4096 << 20;
 
 /// A patch: a piece of one scene polygon that shoots or gathers as a whole.
 #[derive(Clone, Debug)]
@@ -69,8 +125,77 @@ pub struct Mesh {
 }
 
 impl Mesh {
-    /// Cuts every polygon of `scene` into patches and elements.
+    /// Cuts every polygon of `scene` into patches and elements, within the default
+    /// memory budget.
     pub fn build(scene: &Scene, patches: Division, elements: Division) -> Result<Mesh> {
+        Mesh::build_within(scene, patches, elements, DEFAULT_MEMORY_BUDGET, 0)
+    }
+
+    /// The counts `build` would make, without cutting anything.
+    pub fn count(scene: &Scene, patches: Division, elements: Division) -> MeshCounts {
+        let mut counts = MeshCounts::default();
+        for polygon in &scene.polygons {
+            let corners: Vec<DVec3> = polygon.positions().collect();
+            let measure = area(&corners);
+            if measure <= 0.0 || !measure.is_finite() {
+                continue;
+            }
+            if corners.len() == 4 {
+                let (pu, pv, eu, ev) = quad_pieces(&corners, patches, elements);
+                let (nu, nv) = (pu.saturating_mul(eu), pv.saturating_mul(ev));
+                counts.add(
+                    pu.saturating_mul(pv),
+                    nu.saturating_mul(nv),
+                    nu.saturating_add(1).saturating_mul(nv.saturating_add(1)),
+                );
+            } else {
+                for k in 1..corners.len() - 1 {
+                    let triangle = [corners[0], corners[k], corners[k + 1]];
+                    let (np, ne) = triangle_pieces(&triangle, patches, elements);
+                    let n = np.saturating_mul(ne);
+                    counts.add(
+                        np.saturating_mul(np),
+                        n.saturating_mul(n),
+                        n.saturating_add(1).saturating_mul(n.saturating_add(2)) / 2,
+                    );
+                }
+            }
+        }
+        counts
+    }
+
+    /// `build`, refusing (before cutting anything) a mesh whose estimated memory
+    /// (`MeshCounts::bytes`), with the `reserved` bytes the solve holds besides, is
+    /// over `budget` bytes, or whose vertices could not be numbered in 32 bits.
+    pub fn build_within(
+        scene: &Scene,
+        patches: Division,
+        elements: Division,
+        budget: u64,
+        reserved: u64,
+    ) -> Result<Mesh> {
+        let counts = Mesh::count(scene, patches, elements);
+        let needed = counts.bytes().saturating_add(reserved);
+        if needed > budget || counts.vertices > u32::MAX as u64 {
+            let (key, value) = match elements {
+                Division::Whole => patches.describe("patch_size"),
+                _ => elements.describe("element_size"),
+            };
+            return Err(Error::OverBudget(Box::new(crate::error::OverBudget {
+                key,
+                value,
+                what: format!(
+                    "{} patches, {} elements and {} vertices",
+                    counts.patches, counts.elements, counts.vertices
+                ),
+                needed,
+                budget,
+                budget_key: "radiosity.max_memory_mb".into(),
+                suggestion:
+                    "use a larger element_size or patch_size, or raise radiosity.max_memory_mb"
+                        .into(),
+            })));
+        }
         let mut mesh = Mesh::default();
         for (id, polygon) in scene.polygons.iter().enumerate() {
             let corners: Vec<DVec3> = polygon.positions().collect();
@@ -239,15 +364,9 @@ impl Mesh {
     }
 
     fn cut_quad(&mut self, s: &Surface, q: &[DVec3], patches: Division, elements: Division) {
-        let side = |a: usize, b: usize| (q[b] - q[a]).length();
-        let (pu, pv) = (
-            patches.pieces(side(0, 1).max(side(3, 2))),
-            patches.pieces(side(1, 2).max(side(0, 3))),
-        );
-        let (eu, ev) = (
-            elements.pieces(side(0, 1).max(side(3, 2)) / pu as f64),
-            elements.pieces(side(1, 2).max(side(0, 3)) / pv as f64),
-        );
+        // `build_within` has bounded the counts: they fit in memory, so in usize.
+        let (pu, pv, eu, ev) = quad_pieces(q, patches, elements);
+        let (pu, pv, eu, ev) = (pu as usize, pv as usize, eu as usize, ev as usize);
         let (nu, nv) = (pu * eu, pv * ev);
         let point = |a: usize, b: usize| {
             let (s, t) = (a as f64 / nu as f64, b as f64 / nv as f64);
@@ -272,11 +391,8 @@ impl Mesh {
     }
 
     fn cut_triangle(&mut self, s: &Surface, t: &[DVec3; 3], patches: Division, elements: Division) {
-        let longest = (0..3)
-            .map(|k| (t[(k + 1) % 3] - t[k]).length())
-            .fold(0.0, f64::max);
-        let np = patches.pieces(longest);
-        let ne = elements.pieces(longest / np as f64);
+        let (np, ne) = triangle_pieces(t, patches, elements);
+        let (np, ne) = (np as usize, ne as usize);
         let n = np * ne;
         // Grid point (a, b) is t0 + a/n (t1 − t0) + b/n (t2 − t0), a + b ≤ n.
         let point = |a: usize, b: usize| {
@@ -363,6 +479,28 @@ impl Mesh {
             elements,
         });
     }
+}
+
+/// A quad's patches along its two directions, and elements per patch along each.
+fn quad_pieces(q: &[DVec3], patches: Division, elements: Division) -> (u64, u64, u64, u64) {
+    let side = |a: usize, b: usize| (q[b] - q[a]).length();
+    let (u, v) = (side(0, 1).max(side(3, 2)), side(1, 2).max(side(0, 3)));
+    let (pu, pv) = (patches.pieces(u), patches.pieces(v));
+    (
+        pu,
+        pv,
+        elements.pieces(u / pu as f64),
+        elements.pieces(v / pv as f64),
+    )
+}
+
+/// A triangle's patches along each side, and elements per patch along each.
+fn triangle_pieces(t: &[DVec3; 3], patches: Division, elements: Division) -> (u64, u64) {
+    let longest = (0..3)
+        .map(|k| (t[(k + 1) % 3] - t[k]).length())
+        .fold(0.0, f64::max);
+    let np = patches.pieces(longest);
+    (np, elements.pieces(longest / np as f64))
 }
 
 /// What a polygon's patches inherit from it.

@@ -46,13 +46,63 @@ pub fn mesh(scene: &Scene, settings: &Settings) -> Result<Mesh> {
             "adaptive subdivision refines a gathering solution (Cohen et al. 1986): use the gathering solver, or leave `subdivide` out".into(),
         ));
     }
-    let mesh = Mesh::build(scene, settings.patches, settings.elements)?;
+    if settings.solver == Solver::Gathering {
+        // The stored factors dominate gathering's memory: refused first, with the
+        // suggestion to shoot instead.
+        let counts = Mesh::count(scene, settings.patches, settings.elements);
+        let needed = gathering::matrix_bytes_for(counts.elements, counts.patches);
+        if needed > settings.memory_budget {
+            return Err(Error::Memory {
+                elements: usize::try_from(counts.elements).unwrap_or(usize::MAX),
+                patches: usize::try_from(counts.patches).unwrap_or(usize::MAX),
+                needed,
+                budget: settings.memory_budget,
+            });
+        }
+    }
+    let hemicubes = hemicube_bytes(settings);
+    if hemicubes > settings.memory_budget {
+        return Err(Error::OverBudget(Box::new(crate::error::OverBudget {
+            key: "radiosity.resolution".into(),
+            value: settings.resolution.to_string(),
+            what: format!(
+                "the hemi-cube's delta form-factor tables and the item buffers of {} hemi-cubes at once",
+                rayon::current_num_threads()
+            ),
+            needed: hemicubes,
+            budget: settings.memory_budget,
+            budget_key: "radiosity.max_memory_mb".into(),
+            suggestion: "use a lower resolution, or raise radiosity.max_memory_mb".into(),
+        })));
+    }
+    let mesh = Mesh::build_within(
+        scene,
+        settings.patches,
+        settings.elements,
+        settings.memory_budget,
+        hemicubes,
+    )?;
     if mesh.emitted_power().max_element() <= 0.0 {
         return Err(Error::Radiosity(
             "the scene has no emitting surface (a material with `emission`): radiosity has no light to distribute".into(),
         ));
     }
     Ok(mesh)
+}
+
+/// Memory the hemi-cube method holds, estimated: its delta form-factor tables (R² +
+/// 4 × R²/2 of f64) once, and per thread one hemi-cube's item buffers (R² +
+/// 4 × R²/2 of u32). Other methods hold no buffers of this size.
+pub fn hemicube_bytes(settings: &Settings) -> u64 {
+    if settings.form_factors != FormFactorMethod::Hemicube {
+        return 0;
+    }
+    let r = settings.resolution as u64;
+    let cells = 3 * r * r;
+    let threads = rayon::current_num_threads() as u64;
+    cells
+        .saturating_mul(8)
+        .saturating_add(cells.saturating_mul(4).saturating_mul(threads))
 }
 
 /// Solves `scene`'s radiosity with `settings`. `observe` sees the shooting solver

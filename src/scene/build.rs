@@ -22,6 +22,9 @@ use std::sync::Arc;
 
 /// Default segment count of spheres and cylinders.
 const DEFAULT_RESOLUTION: u32 = 32;
+/// The most segments a sphere or cylinder may have (a sphere of 1024 has half a
+/// million faces).
+const MAX_RESOLUTION: u32 = 1024;
 
 pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result<Scene> {
     let file: SceneFile =
@@ -50,6 +53,27 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         "shadows.map_resolution must be between 1 and 8192, got {}",
         s.map_resolution
     );
+    ensure_valid!(
+        s.max_memory_mb > 0,
+        "shadows.max_memory_mb",
+        "shadows.max_memory_mb must be positive"
+    );
+    if s.method == crate::settings::ShadowMethod::ShadowMap {
+        // Six faces of f32 depths per light.
+        let needed = 24 * (s.map_resolution as u64).pow(2);
+        let budget = s.max_memory_mb.saturating_mul(1 << 20);
+        if needed > budget {
+            return Err(Error::OverBudget(Box::new(crate::error::OverBudget {
+                key: "shadows.map_resolution".into(),
+                value: s.map_resolution.to_string(),
+                what: "each light's six shadow-map faces".into(),
+                needed,
+                budget,
+                budget_key: "shadows.max_memory_mb".into(),
+                suggestion: "use a lower map_resolution, or raise shadows.max_memory_mb".into(),
+            })));
+        }
+    }
     ensure_valid!(
         s.map_bias.is_finite() && s.map_bias >= 0.0,
         "shadows.map_bias",
@@ -194,17 +218,17 @@ impl Builder {
             ShapeKind::Box => shapes::cube(),
             ShapeKind::Sphere => {
                 ensure_valid!(
-                    resolution >= 4,
+                    (4..=MAX_RESOLUTION).contains(&resolution),
                     "resolution",
-                    "a sphere needs a resolution of at least 4"
+                    "resolution must be from 4 to {MAX_RESOLUTION} for a sphere, got {resolution}"
                 );
                 shapes::sphere(resolution, smooth)
             }
             ShapeKind::Cylinder => {
                 ensure_valid!(
-                    resolution >= 3,
+                    (3..=MAX_RESOLUTION).contains(&resolution),
                     "resolution",
-                    "a cylinder needs a resolution of at least 3"
+                    "resolution must be from 3 to {MAX_RESOLUTION} for a cylinder, got {resolution}"
                 );
                 shapes::cylinder(resolution, o.caps.unwrap_or(true), smooth)
             }

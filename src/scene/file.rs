@@ -101,6 +101,9 @@ pub struct ShadowsFile {
     /// Ray casting under an extended light: N × N stratified samples over it.
     #[serde(default = "light_samples")]
     pub light_samples: u32,
+    /// Shadow map: the most memory one light's map may take, in MiB.
+    #[serde(default = "shadow_map_memory_mb")]
+    pub max_memory_mb: u64,
 }
 
 impl Default for ShadowsFile {
@@ -112,10 +115,14 @@ impl Default for ShadowsFile {
             pcf: pcf(),
             post_pass: false,
             light_samples: light_samples(),
+            max_memory_mb: shadow_map_memory_mb(),
         }
     }
 }
 
+fn shadow_map_memory_mb() -> u64 {
+    1024
+}
 fn map_resolution() -> u32 {
     1024
 }
