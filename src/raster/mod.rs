@@ -32,6 +32,6 @@ pub use view::View;
 pub use visibility::{LightVisibility, Visibility, VisiblePart};
 pub use visible_surface::{NO_POLYGON, Sample, VisibleSurface};
 pub use watkins::{
-    covered_samples, covered_spans, covered_spans_in, rasterize, rasterize_depth, rasterize_ids,
-    rasterize_rows, spans_inside, uv_gradients,
+    covered_samples, covered_spans, rasterize, rasterize_depth, rasterize_ids, rasterize_rows,
+    spans_inside, uv_gradients,
 };

@@ -60,9 +60,4 @@ impl Visibility {
     pub fn fraction(&self, light: usize, k: usize) -> f32 {
         self.of(light).map_or(1.0, |v| v.fraction(k))
     }
-
-    /// Whether no light is shadowed.
-    pub fn is_none(&self) -> bool {
-        self.per_light.iter().all(Option::is_none)
-    }
 }

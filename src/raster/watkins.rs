@@ -195,20 +195,10 @@ pub fn covered_spans(
     polygons: &[ScreenPolygon],
     width: u32,
     height: u32,
-    f: impl FnMut(u32, u32, u32),
-) {
-    covered_spans_in(polygons, width, 0..height, f)
-}
-
-/// As `covered_spans`, on rows `rows` only (one band of a frame).
-pub fn covered_spans_in(
-    polygons: &[ScreenPolygon],
-    width: u32,
-    rows: Range<u32>,
     mut f: impl FnMut(u32, u32, u32),
 ) {
-    let table = EdgeTable::build(polygons, rows.end);
-    spans_inside(&table, width, rows, |row, i0, i1, _| f(row, i0, i1));
+    let table = EdgeTable::build(polygons, height);
+    spans_inside(&table, width, 0..height, |row, i0, i1, _| f(row, i0, i1));
 }
 
 /// Calls `f(row, first, last, inside)` for every span of rows `rows` lying inside at

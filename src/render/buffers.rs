@@ -172,14 +172,7 @@ fn fixed_description(name: &str) -> String {
 pub fn available_buffers(renderer: &Renderer) -> Result<Vec<BufferInfo>> {
     let integrator = renderer.integrator()?;
     let direct = integrator.direct_lights(renderer.scene());
-    let mut shadows = Vec::new();
-    for (l, &lit) in direct.iter().enumerate() {
-        shadows.push(if lit {
-            renderer.light_shadows(l)?
-        } else {
-            None
-        });
-    }
+    let shadows = renderer.shadows_of(&direct)?;
     let (kinds, fixed) = catalogue(renderer, &integrator, &shadows);
     Ok(kinds
         .into_iter()

@@ -15,14 +15,7 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
     let scene = renderer.scene();
     let integrator = renderer.integrator()?;
     let direct = integrator.direct_lights(scene);
-    let mut shadows = Vec::with_capacity(scene.lights.len());
-    for (index, &lit) in direct.iter().enumerate() {
-        shadows.push(if lit {
-            renderer.light_shadows(index)?
-        } else {
-            None
-        });
-    }
+    let shadows = renderer.shadows_of(&direct)?;
     let mut buffers = FrameBuffers::new(renderer, &integrator, &shadows, wanted)?;
 
     let view = sample_view(scene);

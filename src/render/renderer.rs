@@ -101,7 +101,7 @@ impl Renderer {
                 index,
                 message: format!(
                     "{} is a polygon of the scene: change the scene, not the light",
-                    shadow::describe(old, index)
+                    old.label(index)
                 ),
             });
         }
@@ -159,6 +159,22 @@ impl Renderer {
                 Ok(Integrator::Radiosity(solution))
             }
         }
+    }
+
+    /// The shadow pre-passes of the lights `direct` selects (`None` for the others
+    /// and for unshadowed lights).
+    pub fn shadows_of(&self, direct: &[bool]) -> Result<Vec<Option<Arc<dyn LightShadows>>>> {
+        direct
+            .iter()
+            .enumerate()
+            .map(|(index, &lit)| {
+                if lit {
+                    self.light_shadows(index)
+                } else {
+                    Ok(None)
+                }
+            })
+            .collect()
     }
 
     /// Light `index`'s shadow pre-pass (`None`: unshadowed).

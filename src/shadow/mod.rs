@@ -27,7 +27,7 @@ pub mod shadow_volumes;
 
 use crate::output::Buffer;
 use crate::raster::{LightVisibility, View, Visibility, VisibleSurface};
-use crate::scene::{Light, Scene};
+use crate::scene::Scene;
 use crate::settings::ShadowSettings;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -82,10 +82,10 @@ pub fn check(scene: &Scene, index: usize, method: ShadowMethod) -> Result<(), Un
     let light = &scene.lights[index];
     match method {
         ShadowMethod::None | ShadowMethod::RayCast => Ok(()),
-        _ if point_position(light).is_some() => Ok(()),
+        _ if light.position().is_some() => Ok(()),
         _ => Err(Unsupported {
             method,
-            light: describe(light, index),
+            light: light.label(index),
         }),
     }
 }
@@ -112,7 +112,7 @@ pub fn prepare(
         ))));
     }
     check(scene, index, method)?;
-    let at = point_position(light).expect("checked");
+    let at = light.position().expect("checked");
     Ok(Some(match method {
         ShadowMethod::None | ShadowMethod::RayCast => unreachable!("handled above"),
         ShadowMethod::Scanline => Arc::new(scanline_shadows::ScanlineShadows::new(scene, at, true)),
@@ -126,17 +126,6 @@ pub fn prepare(
         ShadowMethod::ShadowPolygons => Arc::new(shadow_polygons::ShadowPolygons::new(scene, at)),
         ShadowMethod::ShadowVolumes => Arc::new(shadow_volumes::ShadowVolumes::new(scene, at)),
     }))
-}
-
-/// Where a light that the hard-shadow methods handle sits: point lights (and spot
-/// lights, which are point lights with a directional intensity).
-fn point_position(light: &Light) -> Option<DVec3> {
-    light.position()
-}
-
-/// "light 2 (spot `key`)" for messages.
-pub fn describe(light: &Light, index: usize) -> String {
-    light.label(index)
 }
 
 /// Every light's visibility on a whole visible-surface buffer by `method`, each
