@@ -53,6 +53,16 @@ pub enum ShadowMethod {
     /// Crow 1977: volumes bounded by quads through the silhouette edges, counted
     /// along each pixel's line of sight.
     ShadowVolumes,
+    /// Nishita & Nakamae 1983: umbra and penumbra polygons cut onto each receiver
+    /// from the light's vertices; in the penumbra, the exact visible part of a
+    /// polygonal light (the light minus the occluders projected onto it).
+    UmbraPenumbra,
+    /// Brotman & Badler 1984: the light replaced by n random points, one set of
+    /// Crow's volumes each, the points hidden counted per sample.
+    SoftShadowVolumes,
+    /// A spherical light cut into hexagonal cells, one shadow ray per cell, at the
+    /// cell's centre or jittered inside it (Cook 1986).
+    JitteredSoftShadows,
 }
 
 impl ShadowMethod {
@@ -65,6 +75,9 @@ impl ShadowMethod {
             ShadowMethod::ShadowPolygons => "shadow-polygons",
             ShadowMethod::ShadowMap => "shadow-map",
             ShadowMethod::ShadowVolumes => "shadow-volumes",
+            ShadowMethod::UmbraPenumbra => "umbra-penumbra",
+            ShadowMethod::SoftShadowVolumes => "soft-shadow-volumes",
+            ShadowMethod::JitteredSoftShadows => "jittered-soft-shadows",
         }
     }
 }
@@ -79,6 +92,27 @@ pub struct ShadowSettings {
     pub post_pass: bool,
     /// Ray casting under an extended light: N × N stratified samples over the emitter.
     pub light_samples: u32,
+    /// Soft shadow volumes: the number of points the light is replaced by.
+    pub light_points: u32,
+    /// Jittered soft shadows: rings of hexagonal cells around the centre cell.
+    pub rings: u32,
+    /// Jittered soft shadows: cell centres, or a random point in each cell.
+    pub sampling: CellSampling,
+    /// The seed of the stochastic methods' streams (soft shadow volumes' points,
+    /// jittered cells).
+    pub seed: u64,
+}
+
+/// Where a jittered soft shadow's ray meets its hexagonal cell.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+pub enum CellSampling {
+    /// The cell's centre, the same for every pixel: the penumbra in bands.
+    Regular,
+    /// A random point of the cell, fresh per pixel: the bands become noise.
+    #[default]
+    Jittered,
 }
 
 /// How a texture is sampled.

@@ -2,6 +2,9 @@
 //! the bounding volume hierarchy; Lambert's contour formula.
 
 pub mod bvh;
+pub mod central_projection;
+pub mod convex;
+pub mod disc;
 pub mod lambert_contour;
 pub mod polygon;
 pub mod sampling;

@@ -9,6 +9,7 @@ use crate::output::{Buffer, BufferData, NO_ID};
 use crate::radiosity::hemicube::{BACK, Hemicube};
 use crate::radiosity::receivers::Receivers;
 use crate::raster::{NO_POLYGON, Visibility, VisibleSurface};
+use crate::settings::ShadowMethod;
 use crate::shadow::LightShadows;
 use crate::{Error, Result};
 use std::sync::Arc;
@@ -30,7 +31,7 @@ enum Kind {
     Normal,
     Uv,
     Visibility(usize),
-    Counts(usize),
+    Counts(usize, ShadowMethod),
     MipLevel,
     Radiosity,
 }
@@ -45,7 +46,11 @@ impl Kind {
             Kind::Normal => "normal".into(),
             Kind::Uv => "uv".into(),
             Kind::Visibility(l) => format!("visibility-{l}"),
-            Kind::Counts(l) => format!("shadow-volume-counts-{l}"),
+            Kind::Counts(l, method) => match method {
+                ShadowMethod::UmbraPenumbra => format!("umbra-{l}"),
+                ShadowMethod::SoftShadowVolumes => format!("blocked-{l}"),
+                _ => format!("shadow-volume-counts-{l}"),
+            },
             Kind::MipLevel => "mip-level".into(),
             Kind::Radiosity => "radiosity".into(),
         }
@@ -64,9 +69,17 @@ impl Kind {
             Kind::Visibility(l) => {
                 format!("light {l}'s visibility: 1 lit, 0 shadowed, between partly lit")
             }
-            Kind::Counts(l) => format!(
-                "shadow volumes of light {l} containing each visible point (Crow's count; colour-mapped)"
-            ),
+            Kind::Counts(l, method) => match method {
+                ShadowMethod::UmbraPenumbra => format!(
+                    "light {l}'s umbra map: 0 lit, 1 penumbra, 2 umbra (Nishita & Nakamae; colour-mapped)"
+                ),
+                ShadowMethod::SoftShadowVolumes => format!(
+                    "points of light {l} hidden from each visible point (Brotman & Badler's count; colour-mapped)"
+                ),
+                _ => format!(
+                    "shadow volumes of light {l} containing each visible point (Crow's count; colour-mapped)"
+                ),
+            },
             Kind::MipLevel => {
                 "mip-map level λ read per sample for its diffuse texture (-1: none)".into()
             }
@@ -110,8 +123,14 @@ fn catalogue(
     for (l, s) in shadows.iter().enumerate() {
         let Some(s) = s else { continue };
         kinds.push(Kind::Visibility(l));
-        if scene.shadows.method == crate::settings::ShadowMethod::ShadowVolumes {
-            kinds.push(Kind::Counts(l));
+        let method = scene.shadows.method;
+        if matches!(
+            method,
+            ShadowMethod::ShadowVolumes
+                | ShadowMethod::UmbraPenumbra
+                | ShadowMethod::SoftShadowVolumes
+        ) {
+            kinds.push(Kind::Counts(l, method));
         }
         fixed.extend(s.buffers(&format!("shadow-map-{l}")));
     }
@@ -219,7 +238,7 @@ impl FrameBuffers {
             if let Some(&kind) = kinds.iter().find(|k| &k.name() == name) {
                 let data = match kind {
                     Kind::Polygon | Kind::Element => BufferData::Ids(Vec::new()),
-                    Kind::Counts(_) => BufferData::Counts(Vec::new()),
+                    Kind::Counts(..) => BufferData::Counts(Vec::new()),
                     _ => BufferData::Values {
                         channels: kind.channels(),
                         data: Vec::new(),
@@ -260,7 +279,7 @@ impl FrameBuffers {
                 (Kind::Element, BufferData::Ids(ids)) => {
                     ids.extend(band.samples.iter().map(|s| s.element))
                 }
-                (Kind::Counts(l), BufferData::Counts(c)) => match &counts[*l] {
+                (Kind::Counts(l, _), BufferData::Counts(c)) => match &counts[*l] {
                     Some(found) => c.extend(found),
                     None => c.extend(std::iter::repeat_n(0, band.samples.len())),
                 },

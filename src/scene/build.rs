@@ -20,6 +20,8 @@ use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
 
+/// The most rings of hexagonal cells a jittered soft shadow takes (12,481 cells).
+const MAX_RINGS: u32 = 64;
 /// Default segment count of spheres and cylinders.
 const DEFAULT_RESOLUTION: u32 = 32;
 /// The most segments a sphere or cylinder may have (a sphere of 1024 has half a
@@ -91,7 +93,23 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         "shadows.light_samples must be between 1 and 64 (N x N samples per extended light), got {}",
         s.light_samples
     );
+    ensure_valid!(
+        (1..=1024).contains(&s.light_points),
+        "shadows.light_points",
+        "shadows.light_points must be between 1 and 1024 (points replacing each light), got {}",
+        s.light_points
+    );
+    ensure_valid!(
+        s.rings <= MAX_RINGS,
+        "shadows.rings",
+        "shadows.rings must be at most {MAX_RINGS} (1 + 3K(K + 1) cells, one shadow ray each per sample), got {}",
+        s.rings
+    );
     let shadows = ShadowSettings {
+        light_points: s.light_points,
+        rings: s.rings,
+        sampling: s.sampling,
+        seed: s.seed,
         light_samples: s.light_samples,
         method: s.method,
         map_resolution: s.map_resolution,
@@ -408,8 +426,14 @@ impl Builder {
                     "radius",
                     "radius must be a positive number, got {radius}"
                 );
+                let at = validate::vec3("centre", *centre)?;
+                ensure_valid!(
+                    (self.eye - at).length() > *radius,
+                    "radius",
+                    "the sphere light (radius {radius}) encloses the eye: it would be seen from inside, where it does not shine"
+                );
                 Ok(Some(Light::Sphere(SphereLight {
-                    centre: validate::vec3("centre", *centre)?,
+                    centre: at,
                     radius: *radius,
                     radiance: validate::colour("radiance", *radiance)?,
                     name: name.clone(),

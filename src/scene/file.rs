@@ -104,6 +104,18 @@ pub struct ShadowsFile {
     /// Shadow map: the most memory one light's map may take, in MiB.
     #[serde(default = "shadow_map_memory_mb")]
     pub max_memory_mb: u64,
+    /// Soft shadow volumes: points the light is replaced by.
+    #[serde(default = "light_points")]
+    pub light_points: u32,
+    /// Jittered soft shadows: rings of hexagonal cells (1 + 3K(K + 1) cells).
+    #[serde(default = "rings")]
+    pub rings: u32,
+    /// Jittered soft shadows: `regular` (cell centres) or `jittered`.
+    #[serde(default)]
+    pub sampling: crate::settings::CellSampling,
+    /// Seed of the stochastic shadow methods.
+    #[serde(default)]
+    pub seed: u64,
 }
 
 impl Default for ShadowsFile {
@@ -116,6 +128,10 @@ impl Default for ShadowsFile {
             post_pass: false,
             light_samples: light_samples(),
             max_memory_mb: shadow_map_memory_mb(),
+            light_points: light_points(),
+            rings: rings(),
+            sampling: Default::default(),
+            seed: 0,
         }
     }
 }
@@ -134,6 +150,12 @@ fn pcf() -> u32 {
 }
 fn light_samples() -> u32 {
     4
+}
+fn light_points() -> u32 {
+    16
+}
+fn rings() -> u32 {
+    3
 }
 
 #[derive(Debug, Deserialize)]

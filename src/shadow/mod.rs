@@ -17,6 +17,7 @@
 //! handle refuses it (`Unsupported`), naming both: nothing is silently unshadowed.
 
 pub mod cube_faces;
+pub mod jittered_soft_shadows;
 pub mod ray_cast;
 mod receivers;
 pub mod scanline_shadows;
@@ -24,10 +25,12 @@ pub mod shadow_map;
 pub mod shadow_polygon_areas;
 pub mod shadow_polygons;
 pub mod shadow_volumes;
+pub mod soft_shadow_volumes;
+pub mod umbra_penumbra;
 
 use crate::output::Buffer;
 use crate::raster::{LightVisibility, View, Visibility, VisibleSurface};
-use crate::scene::Scene;
+use crate::scene::{Light, Scene};
 use crate::settings::ShadowSettings;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -80,10 +83,17 @@ pub trait SharedWork {
 /// Whether `method` can shadow light `index` of `scene` (before any work is done).
 pub fn check(scene: &Scene, index: usize, method: ShadowMethod) -> Result<(), Unsupported> {
     let light = &scene.lights[index];
-    match method {
-        ShadowMethod::None | ShadowMethod::RayCast => Ok(()),
-        _ if light.position().is_some() => Ok(()),
-        _ => Err(Unsupported {
+    let supported = match method {
+        ShadowMethod::None | ShadowMethod::RayCast => true,
+        ShadowMethod::UmbraPenumbra | ShadowMethod::SoftShadowVolumes => {
+            matches!(light, Light::Point(_) | Light::Spot(_) | Light::Polygon(_))
+        }
+        ShadowMethod::JitteredSoftShadows => matches!(light, Light::Sphere(_)),
+        _ => light.position().is_some(),
+    };
+    match supported {
+        true => Ok(()),
+        false => Err(Unsupported {
             method,
             light: light.label(index),
         }),
@@ -112,9 +122,39 @@ pub fn prepare(
         ))));
     }
     check(scene, index, method)?;
+    match (method, light) {
+        (ShadowMethod::UmbraPenumbra, _) => {
+            let exact = umbra_penumbra::UmbraPenumbra::new(scene, light).expect("checked");
+            return Ok(Some(Arc::new(exact)));
+        }
+        (ShadowMethod::SoftShadowVolumes, _) => {
+            let n = settings.light_points;
+            let soft =
+                soft_shadow_volumes::SoftShadowVolumes::new(scene, light, index, n, settings.seed)
+                    .expect("checked");
+            return Ok(Some(Arc::new(soft)));
+        }
+        (ShadowMethod::JitteredSoftShadows, Light::Sphere(sphere)) => {
+            return Ok(Some(Arc::new(
+                jittered_soft_shadows::JitteredSoftShadows::new(
+                    shared.occluders(),
+                    sphere.clone(),
+                    index,
+                    settings.rings,
+                    settings.sampling,
+                    settings.seed,
+                ),
+            )));
+        }
+        _ => {}
+    }
     let at = light.position().expect("checked");
     Ok(Some(match method {
-        ShadowMethod::None | ShadowMethod::RayCast => unreachable!("handled above"),
+        ShadowMethod::None
+        | ShadowMethod::RayCast
+        | ShadowMethod::UmbraPenumbra
+        | ShadowMethod::SoftShadowVolumes
+        | ShadowMethod::JitteredSoftShadows => unreachable!("handled above"),
         ShadowMethod::Scanline => Arc::new(scanline_shadows::ScanlineShadows::new(scene, at, true)),
         ShadowMethod::ShadowMap => Arc::new(shadow_map::CubeShadowMap::build(
             scene,

@@ -28,9 +28,10 @@ impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync> ReceiverScreens<F> {
         }
     }
 
-    /// Calls `f(row, first, last)` for every span of `band`'s rows that receiver
-    /// `r`'s polygons cover (their union), row by row.
-    pub fn spans(&self, r: usize, band: &VisibleSurface, mut f: impl FnMut(u32, u32, u32)) {
+    /// Calls `f(row, first, last, inside)` for every span of `band`'s rows that
+    /// receiver `r`'s polygons cover, row by row, with the ids of the polygons
+    /// covering it.
+    pub fn spans(&self, r: usize, band: &VisibleSurface, mut f: impl FnMut(u32, u32, u32, &[u32])) {
         let projected = self.slots[r].get_or_init(|| {
             let polygons = (self.project)(r);
             (!polygons.is_empty()).then(|| Projected {
@@ -38,9 +39,7 @@ impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync> ReceiverScreens<F> {
             })
         });
         if let Some(p) = projected {
-            spans_inside(&p.table, band.width, band.rows(), |row, a, b, _| {
-                f(row, a, b)
-            });
+            spans_inside(&p.table, band.width, band.rows(), &mut f);
         }
     }
 }

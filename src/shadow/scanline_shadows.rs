@@ -7,8 +7,8 @@
 //! onto a sphere around the light; two polygons whose projections do not overlap
 //! cannot shadow each other, which prunes the pairs. For each remaining pair, the
 //! caster C can shadow the receiver R only where C lies between the light and R's
-//! plane: C is clipped to that slab and projected from the light onto R's plane. The
-//! projections are R's shadow polygons; they take no part in visibility.
+//! plane: C is clipped to that slab and projected from the light onto R's plane
+//! (`geometry::central_projection`). The projections are R's shadow polygons; they take no part in visibility.
 //!
 //! Scan-out: the visible-surface pass gives, on each row, the span segments where R
 //! is visible. R's shadow polygons, entered in an edge table of their own and swept
@@ -26,7 +26,7 @@
 
 use super::receivers::{ReceiverScreens, seen_in};
 use super::{BandShadows, FrameShadows, LightShadows, per_sample};
-use crate::geometry::sutherland_hodgman::clip;
+use crate::geometry::central_projection::onto_plane;
 use crate::raster::{LightVisibility, ScreenPolygon, View, VisibleSurface};
 use crate::scene::{Polygon, Scene};
 use glam::DVec3;
@@ -112,7 +112,8 @@ impl ScanlineShadows {
     }
 }
 
-/// The shadow polygons every caster throws on receiver `r`'s plane.
+/// The shadow polygons every caster throws on receiver `r`'s plane: each caster
+/// clipped to the slab between the light and R's plane and projected from the light.
 fn project_onto(
     scene: &Scene,
     light: DVec3,
@@ -122,13 +123,6 @@ fn project_onto(
 ) -> Vec<Vec<DVec3>> {
     let receiver = &scene.polygons[r];
     let origin = receiver.vertices[0].position;
-    // Signed distance to R's plane, positive on the light's side.
-    let side = receiver.normal.dot(light - origin).signum();
-    let distance = |p: DVec3| (p - origin).dot(receiver.normal) * side;
-    let light_distance = distance(light);
-    if light_distance <= 0.0 {
-        return Vec::new(); // the light is in R's plane: R is unlit anyway
-    }
     scene
         .polygons
         .iter()
@@ -136,22 +130,7 @@ fn project_onto(
         .filter(|&(c, _)| c != r && (!prune || cones[r].overlaps(&cones[c])))
         .filter_map(|(_, caster)| {
             let corners: Vec<DVec3> = caster.positions().collect();
-            if !corners.iter().any(|&v| distance(v) > 0.0) {
-                return None; // nothing of C between the light and R's plane
-            }
-            let between = clip(&corners, |v| distance(*v));
-            let between = clip(&between, |v| light_distance * (1.0 - 1e-6) - distance(*v));
-            if between.len() < 3 {
-                return None;
-            }
-            Some(
-                between
-                    .iter()
-                    .map(|&v| {
-                        light + (v - light) * (light_distance / (light_distance - distance(v)))
-                    })
-                    .collect(),
-            )
+            onto_plane(&corners, light, origin, receiver.normal)
         })
         .collect()
 }
@@ -225,7 +204,7 @@ impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync + Send> FrameShadows for Scanline
             .into_par_iter()
             .map(|receiver| {
                 let mut intervals: Vec<Vec<(u32, u32)>> = vec![Vec::new(); band.height as usize];
-                self.screens.spans(receiver, band, |row, a, b| {
+                self.screens.spans(receiver, band, |row, a, b, _| {
                     let row = &mut intervals[(row - band.first_row) as usize];
                     match row.last_mut() {
                         Some(last) if last.1 + 1 >= a => last.1 = last.1.max(b),

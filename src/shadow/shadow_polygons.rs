@@ -266,7 +266,7 @@ impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync + Send> FrameShadows for DetailFr
             .filter(|&r| !self.shadows.lit[r].is_empty())
             .map(|receiver| {
                 let mut covered = Vec::new();
-                self.screens.spans(receiver, band, |row, a, b| {
+                self.screens.spans(receiver, band, |row, a, b, _| {
                     for x in a..=b {
                         let k = (row - band.first_row) as usize * width + x as usize;
                         if band.samples[k].polygon == receiver as u32 {

@@ -132,6 +132,22 @@ impl ShadowVolumes {
 
 impl LightShadows for ShadowVolumes {
     fn frame<'a>(&'a self, scene: &'a Scene, view: &'a View) -> Box<dyn FrameShadows + 'a> {
+        Box::new(self.volumes_frame(scene, view))
+    }
+}
+
+impl ShadowVolumes {
+    /// The light's position.
+    pub fn light(&self) -> DVec3 {
+        self.light
+    }
+
+    /// The quads on this view's screen, in an edge table, and the eye's count.
+    pub(super) fn volumes_frame<'a>(
+        &'a self,
+        scene: &'a Scene,
+        view: &'a View,
+    ) -> VolumesFrame<'a> {
         let mut screens = Vec::new();
         let mut steps = Vec::new();
         for quad in &self.quads {
@@ -142,7 +158,7 @@ impl LightShadows for ShadowVolumes {
                 steps.push(if facing > 0.0 { 1 } else { -1 });
             }
         }
-        Box::new(VolumesFrame {
+        VolumesFrame {
             light: self.light,
             scene,
             view,
@@ -150,11 +166,11 @@ impl LightShadows for ShadowVolumes {
             screens,
             steps,
             start: eye_count(scene, view.eye, self.light),
-        })
+        }
     }
 }
 
-struct VolumesFrame<'a> {
+pub(super) struct VolumesFrame<'a> {
     light: DVec3,
     scene: &'a Scene,
     view: &'a View,
@@ -170,10 +186,23 @@ struct VolumesFrame<'a> {
 const GROUP_ROWS: usize = 8;
 
 impl FrameShadows for VolumesFrame<'_> {
+    fn band(&self, band: &VisibleSurface) -> BandShadows {
+        let counts = self.counts(band);
+        let visibility = per_sample(self.scene, self.view, band, self.light, |k, _, _| {
+            counts[k] <= 0
+        });
+        BandShadows {
+            visibility: LightVisibility::Fraction(visibility),
+            counts: Some(counts),
+        }
+    }
+}
+
+impl VolumesFrame<'_> {
     /// Crow's count along each pixel's line of sight: the scan-line sweep of the
     /// shadow quads gives, for every span, the quads covering it; each counts at a
     /// sample when it is nearer than the visible surface.
-    fn band(&self, band: &VisibleSurface) -> BandShadows {
+    pub(super) fn counts(&self, band: &VisibleSurface) -> Vec<i32> {
         let width = band.width as usize;
         let mut counts = vec![self.start; band.samples.len()];
         counts
@@ -197,13 +226,7 @@ impl FrameShadows for VolumesFrame<'_> {
                     }
                 });
             });
-        let visibility = per_sample(self.scene, self.view, band, self.light, |k, _, _| {
-            counts[k] <= 0
-        });
-        BandShadows {
-            visibility: LightVisibility::Fraction(visibility),
-            counts: Some(counts),
-        }
+        counts
     }
 }
 

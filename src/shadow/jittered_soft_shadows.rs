@@ -1,0 +1,202 @@
+//! Soft shadows from a spherical light by one shadow ray per hexagonal cell, at the
+//! cell's centre or jittered inside it: the course's construction of antialiased
+//! soft shadows, on the principle of R. L. Cook, T. Porter, L. Carpenter,
+//! "Distributed ray tracing", SIGGRAPH '84 (rays to points spread over the light)
+//! and R. L. Cook, "Stochastic sampling in computer graphics", ACM Transactions on
+//! Graphics 5(1):51–72, 1986 (jitter turns aliasing into noise).
+//!
+//! Seen from a shading point x, the sphere (centre C, radius r, at distance D) is a
+//! disc: its outline circle, centred at C − r²/D along the direction to x with
+//! radius r √(1 − r²/D²) (the exact silhouette, not the disc through C). The disc is
+//! tiled by regular hexagons in K rings around a centre cell (1, 7, 19, 37, 61 …
+//! = 1 + 3K(K + 1) cells), pointy-top, circumradius h = R/(1.5K + ½), the largest
+//! for which the rings cover the disc (the innermost notches of the outer ring lie
+//! (1.5K + ½)h from the centre). One shadow ray goes to each cell:
+//!
+//! - regular: to the centre of every cell whose centre lies in the disc, all with
+//!   equal weight; every pixel uses the same points, so the visible fraction takes at
+//!   most N + 1 values and the penumbra shows as bands, copies of the occluder's
+//!   outline;
+//! - jittered: to a uniform point of the cell's part inside the disc, fresh per
+//!   pixel (the pixel's stream of the seed), weighted by that part's exact area, so
+//!   the estimate's mean is the visible share of the disc's area; the bands become
+//!   noise, and full light and umbra stay exact, every ray agreeing there.
+//!
+//! The fraction of the weight whose ray reaches the disc scales the exact
+//! unshadowed irradiance (the sphere's form factor). A ray is blocked by any polygon
+//! between x and its point (the receiver itself excepted); sphere lights cast no
+//! shadow of their own. Scene keys: `[shadows] method = "jittered-soft-shadows"`,
+//! `rings`, `sampling = "regular" | "jittered"`, `seed`.
+
+use super::{BandShadows, FrameShadows, LightShadows, SceneOccluders};
+use crate::geometry::disc::area_inside;
+use crate::geometry::sampling::Stream;
+use crate::raster::{View, VisibleSurface};
+use crate::scene::{Scene, SphereLight};
+use crate::settings::CellSampling;
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+use std::sync::Arc;
+
+/// One hexagonal cell of the unit disc's tiling.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cell {
+    pub centre: DVec2,
+    /// The area of the cell inside the unit disc.
+    pub area: f64,
+}
+
+/// The hexagonal cells of `rings` rings meeting the unit disc, and their
+/// circumradius.
+pub fn cells(rings: u32) -> (Vec<Cell>, f64) {
+    let k = rings as i64;
+    let h = 1.0 / (1.5 * rings as f64 + 0.5);
+    let mut cells = Vec::new();
+    for r in -k..=k {
+        for q in -k..=k {
+            if (q + r).abs() > k {
+                continue;
+            }
+            let centre = DVec2::new(3f64.sqrt() * (q as f64 + 0.5 * r as f64), 1.5 * r as f64) * h;
+            let area = area_inside(&hexagon(centre, h), DVec2::ZERO, 1.0);
+            if area > 0.0 {
+                cells.push(Cell { centre, area });
+            }
+        }
+    }
+    (cells, h)
+}
+
+/// A pointy-top regular hexagon, counter-clockwise.
+pub fn hexagon(centre: DVec2, h: f64) -> Vec<DVec2> {
+    (0..6)
+        .map(|i| {
+            let angle = (30.0 + 60.0 * i as f64).to_radians();
+            centre + DVec2::new(angle.cos(), angle.sin()) * h
+        })
+        .collect()
+}
+
+/// A uniform point of the hexagon at `centre` with circumradius `h`: one of its six
+/// triangles about the centre, then a uniform point of it.
+fn point_in_hexagon(centre: DVec2, h: f64, stream: &mut Stream) -> DVec2 {
+    let corners = hexagon(centre, h);
+    let i = ((stream.next_f64() * 6.0) as usize).min(5);
+    let (a, b) = (corners[i], corners[(i + 1) % 6]);
+    let (s, t) = (stream.next_f64().sqrt(), stream.next_f64());
+    centre + (a - centre) * (s * (1.0 - t)) + (b - centre) * (s * t)
+}
+
+/// The pre-pass: the scene's hierarchy and the cells of the unit disc.
+pub struct JitteredSoftShadows {
+    occluders: Arc<SceneOccluders>,
+    light: SphereLight,
+    /// The light's index: with the seed, the streams' generator.
+    index: usize,
+    cells: Vec<Cell>,
+    h: f64,
+    sampling: CellSampling,
+    seed: u64,
+}
+
+impl JitteredSoftShadows {
+    pub fn new(
+        occluders: Arc<SceneOccluders>,
+        light: SphereLight,
+        index: usize,
+        rings: u32,
+        sampling: CellSampling,
+        seed: u64,
+    ) -> JitteredSoftShadows {
+        let (mut cells, h) = cells(rings);
+        if sampling == CellSampling::Regular {
+            cells.retain(|c| c.centre.length() <= 1.0);
+        }
+        JitteredSoftShadows {
+            occluders,
+            light,
+            index,
+            cells,
+            h,
+            sampling,
+            seed,
+        }
+    }
+
+    /// How many rays each sample casts.
+    pub fn rays(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// The visible fraction of the light's disc from `x` on polygon `polygon`, its
+    /// cells sampled from `stream`.
+    pub fn fraction(&self, x: DVec3, polygon: u32, stream: &mut Stream) -> f64 {
+        let to_x = x - self.light.centre;
+        let distance = to_x.length();
+        let r = self.light.radius;
+        if distance <= r {
+            return 0.0;
+        }
+        let d = to_x / distance;
+        let centre = self.light.centre + d * (r * r / distance);
+        let radius = r * (1.0 - (r / distance).powi(2)).sqrt();
+        let (t1, t2) = d.any_orthonormal_pair();
+        let (mut seen, mut total) = (0.0, 0.0);
+        for cell in &self.cells {
+            let (at, weight) = match self.sampling {
+                CellSampling::Regular => (cell.centre, 1.0),
+                CellSampling::Jittered => (self.jittered_point(cell, stream), cell.area),
+            };
+            let target = centre + (t1 * at.x + t2 * at.y) * radius;
+            total += weight;
+            if !self.occluders.any_hit(x, target, &[polygon]) {
+                seen += weight;
+            }
+        }
+        if total > 0.0 { seen / total } else { 0.0 }
+    }
+
+    /// A uniform point of the cell's part inside the unit disc: a uniform point of
+    /// the hexagon, drawn again while it falls outside the disc (a rim cell keeps at
+    /// least a sliver inside; after many misses, the cell's centre pulled onto the
+    /// disc).
+    fn jittered_point(&self, cell: &Cell, stream: &mut Stream) -> DVec2 {
+        for _ in 0..256 {
+            let p = point_in_hexagon(cell.centre, self.h, stream);
+            if p.length_squared() <= 1.0 {
+                return p;
+            }
+        }
+        cell.centre.clamp_length_max(1.0)
+    }
+}
+
+impl LightShadows for JitteredSoftShadows {
+    fn frame<'a>(&'a self, _scene: &'a Scene, _view: &'a View) -> Box<dyn FrameShadows + 'a> {
+        Box::new(JitteredFrame { method: self })
+    }
+}
+
+struct JitteredFrame<'a> {
+    method: &'a JitteredSoftShadows,
+}
+
+impl FrameShadows for JitteredFrame<'_> {
+    fn band(&self, band: &VisibleSurface) -> BandShadows {
+        let m = self.method;
+        let fractions = (0..band.samples.len())
+            .into_par_iter()
+            .map(|k| {
+                let s = &band.samples[k];
+                if s.is_empty() {
+                    return 0.0;
+                }
+                let (x, y) = band.position_of(k);
+                let pixel = y as u64 * band.width as u64 + x as u64;
+                let mut stream = Stream::new(m.seed ^ (m.index as u64).rotate_left(32), pixel);
+                m.fraction(s.position, s.polygon, &mut stream) as f32
+            })
+            .collect();
+        BandShadows::fraction(fractions)
+    }
+}
