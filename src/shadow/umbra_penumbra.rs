@@ -254,12 +254,7 @@ impl UmbraPenumbra {
         let origin = receiver.vertices[0].position;
         let frame = PlaneFrame::new(origin, receiver.normal);
         let outline: Vec<DVec3> = receiver.positions().collect();
-        let outline_2d = hull(
-            &outline
-                .iter()
-                .map(|&p| frame.coords(p))
-                .collect::<Vec<_>>(),
-        );
+        let outline_2d = hull(&outline.iter().map(|&p| frame.coords(p)).collect::<Vec<_>>());
         if outline_2d.len() < 3 {
             return Vec::new();
         }
@@ -590,6 +585,9 @@ pub fn subtract_convex(piece: &[DVec2], holes: &[Vec<DVec2>]) -> Vec<Vec<DVec2>>
             let mut rest = p;
             for (i, &a) in hole.iter().enumerate() {
                 let edge = hole[(i + 1) % hole.len()] - a;
+                if edge == DVec2::ZERO {
+                    continue; // a repeated corner (clipping leaves them): no side to cut
+                }
                 let outside = clip(&rest, |q| -edge.perp_dot(*q - a));
                 if outside.len() >= 3 && contour_area(&outside) > 0.0 {
                     next.push(outside);

@@ -1,0 +1,383 @@
+//! The sampled soft-shadow methods against the exact one: Brotman & Badler's
+//! soft shadow volumes and ray casting's stratified light samples converge to
+//! Nishita & Nakamae's exact penumbra on the Cornell box; jittered hexagonal cells
+//! converge to the exact visible share of a spherical light's disc. Brotman & Badler
+//! with one point at the light's centre is Crow's shadow volumes bit for bit, its
+//! count is an integer in [0, n]; regular cells give at most N + 1 levels (bands),
+//! jittered ones do not, and on average their estimate is the uncovered share of the
+//! disc behind a straight edge.
+
+mod common;
+
+use glam::{DVec2, DVec3, Vec3};
+use lumiere::geometry::central_projection::onto_plane;
+use lumiere::geometry::disc::area_inside;
+use lumiere::geometry::sampling::Stream;
+use lumiere::raster::{LightVisibility, View, Visibility, VisibleSurface};
+use lumiere::render::visible_surface;
+use lumiere::scene::{Light, SphereLight};
+use lumiere::settings::{CellSampling, ShadowSettings};
+use lumiere::shading::FrameShading;
+use lumiere::shadow::jittered_soft_shadows::JitteredSoftShadows;
+use lumiere::shadow::shadow_volumes::ShadowVolumes;
+use lumiere::shadow::soft_shadow_volumes::SoftShadowVolumes;
+use lumiere::shadow::{self, LightShadows, SceneOccluders, ShadowMethod, SharedWork};
+use lumiere::{Scene, load_scene};
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+struct Fresh<'a>(&'a Scene);
+
+impl SharedWork for Fresh<'_> {
+    fn occluders(&self) -> Arc<SceneOccluders> {
+        Arc::new(SceneOccluders::owned(self.0.polygons.clone()))
+    }
+}
+
+fn scene_with(id: &str, sets: &[String]) -> Scene {
+    load_scene(id, sets).unwrap_or_else(|e| panic!("{}", common::error_line(&e)))
+}
+
+/// Light 0's shadows by `settings` on the whole frame: visibility and counts.
+fn shadows_of(
+    scene: &Scene,
+    view: &View,
+    surface: &VisibleSurface,
+    settings: &ShadowSettings,
+) -> (LightVisibility, Option<Vec<i32>>) {
+    let prepared = shadow::prepare(scene, 0, settings, &Fresh(scene))
+        .unwrap()
+        .expect("shadowed");
+    let band = prepared.frame(scene, view).band(surface);
+    (band.visibility, band.counts)
+}
+
+/// Per sample radiance with light 0 weighed by `visibility`.
+fn shade(scene: &Scene, view: &View, surface: &VisibleSurface, v: LightVisibility) -> Vec<Vec3> {
+    let shading = FrameShading::new(scene, view, vec![true]);
+    let visibility = Visibility {
+        per_light: vec![Some(v)],
+    };
+    shading.shade_band(surface, &visibility, &[])
+}
+
+/// RMSE between two radiance images over the mean of the reference.
+fn relative_rmse(found: &[Vec3], reference: &[Vec3]) -> f64 {
+    let n = found.len() as f64 * 3.0;
+    let sum: f64 = found
+        .iter()
+        .zip(reference)
+        .map(|(a, b)| (*a - *b).length_squared() as f64)
+        .sum();
+    let mean: f64 = reference
+        .iter()
+        .map(|r| (r.x + r.y + r.z) as f64)
+        .sum::<f64>()
+        / n;
+    (sum / n).sqrt() / mean
+}
+
+/// The Cornell box at 128 x 128 (the lamp's own pixels left out of the error: they
+/// are emission, the same in every method).
+fn cornell() -> (Scene, View, VisibleSurface) {
+    let scene = scene_with(
+        "cornell-box",
+        &["camera.width=128".into(), "camera.height=128".into()],
+    );
+    let (view, surface) = visible_surface(&scene);
+    (scene, view, surface)
+}
+
+#[test]
+fn soft_shadow_volumes_and_ray_casting_converge_to_the_exact_penumbra() {
+    let (scene, view, surface) = cornell();
+    let settings = |method, points, samples| ShadowSettings {
+        method,
+        light_points: points,
+        light_samples: samples,
+        ..scene.shadows.clone()
+    };
+    let exact = shadows_of(
+        &scene,
+        &view,
+        &surface,
+        &settings(ShadowMethod::UmbraPenumbra, 1, 1),
+    )
+    .0;
+    let reference = shade(&scene, &view, &surface, exact);
+    let mut table = Vec::new();
+    for (points, samples) in [(4, 2), (16, 4), (64, 8), (256, 16)] {
+        let volumes = settings(ShadowMethod::SoftShadowVolumes, points, 1);
+        let (v, counts) = shadows_of(&scene, &view, &surface, &volumes);
+        let soft = relative_rmse(&shade(&scene, &view, &surface, v), &reference);
+        // The paper's count: an integer number of hidden points, 0 to n.
+        let counts = counts.expect("the blocked count");
+        assert!(counts.iter().all(|&c| (0..=points as i32).contains(&c)));
+        let cast = settings(ShadowMethod::RayCast, 1, samples);
+        let (v, _) = shadows_of(&scene, &view, &surface, &cast);
+        let sampled = relative_rmse(&shade(&scene, &view, &surface, v), &reference);
+        table.push((points, soft, sampled));
+    }
+    eprintln!("n, relative RMSE of soft shadow volumes, of ray casting: {table:?}");
+    for w in table.windows(2) {
+        assert!(
+            w[1].1 < w[0].1,
+            "soft shadow volumes do not converge: {table:?}"
+        );
+        assert!(w[1].2 < w[0].2, "ray casting does not converge: {table:?}");
+    }
+    let (_, soft, sampled) = table[3];
+    assert!(soft < 0.02 && sampled < 0.02, "{table:?}");
+}
+
+/// With one point at the light's centre, Brotman & Badler's count is Crow's: the
+/// same visibility bit for bit, counts of 0 and 1.
+#[test]
+fn one_point_at_the_centre_is_shadow_volumes() {
+    let (scene, view, surface) = cornell();
+    let Light::Polygon(l) = &scene.lights[0] else {
+        panic!("the quad light");
+    };
+    let soft = SoftShadowVolumes::at_points(&scene, &scene.lights[0], &[l.centre]);
+    let crow = ShadowVolumes::new(&scene, l.centre);
+    let a = soft.frame(&scene, &view).band(&surface);
+    let b = crow.frame(&scene, &view).band(&surface);
+    assert_eq!(a.visibility, b.visibility);
+    let LightVisibility::Fraction(f) = &a.visibility else {
+        panic!("a fraction");
+    };
+    let dark = f.iter().filter(|&&v| v == 0.0).count();
+    assert!(dark > 2000, "{dark} shadowed samples");
+    let blocked = a.counts.unwrap();
+    assert!(
+        f.iter()
+            .zip(&blocked)
+            .all(|(&v, &c)| (v == 0.0 && c == 1) || (v == 1.0 && c == 0))
+    );
+}
+
+/// A sphere light over a floor, a square plate between them.
+const SPHERE_SCENE: &str = r#"
+[camera]
+eye = [0.0, 3.0, 5.0]
+look_at = [0.0, 0.0, 0.0]
+fov_y = 35.0
+width = 96
+height = 72
+
+[shadows]
+method = "jittered-soft-shadows"
+
+[materials.grey]
+diffuse = [0.5, 0.5, 0.5]
+
+[[lights]]
+type = "sphere"
+centre = [0.2, 3.0, 0.0]
+radius = 0.5
+radiance = [5.0, 5.0, 5.0]
+
+[[objects]]
+shape = "quad"
+name = "floor"
+material = "grey"
+transform = [{ scale = 10.0 }]
+
+[[objects]]
+shape = "quad"
+name = "plate"
+material = "grey"
+transform = [{ scale = 0.8 }, { translate = [0.0, 1.2, 0.0] }]
+"#;
+
+fn sphere_scene(sets: &[String]) -> Scene {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("sphere.toml");
+    std::fs::write(&path, SPHERE_SCENE).unwrap();
+    scene_with(path.to_str().unwrap(), sets)
+}
+
+/// The exact visible share of the sphere's outline disc from `x`: the disc less the
+/// plate projected from x onto the disc's plane (one convex plate, so one hole).
+fn exact_disc_share(scene: &Scene, x: DVec3) -> f64 {
+    let Light::Sphere(l) = &scene.lights[0] else {
+        panic!("a sphere light");
+    };
+    let to_x = x - l.centre;
+    let d = to_x.length();
+    let axis = to_x / d;
+    let centre = l.centre + axis * (l.radius * l.radius / d);
+    let radius = l.radius * (1.0 - (l.radius / d).powi(2)).sqrt();
+    let plate = scene
+        .objects
+        .iter()
+        .position(|o| o.name == "plate")
+        .unwrap();
+    let (u, v) = axis.any_orthonormal_pair();
+    let mut hidden = 0.0;
+    for p in scene.polygons.iter().filter(|p| p.object == plate) {
+        let corners: Vec<DVec3> = p.positions().collect();
+        if let Some(shadow) = onto_plane(&corners, x, centre, axis) {
+            let flat: Vec<DVec2> = shadow
+                .iter()
+                .map(|&q| DVec2::new((q - centre).dot(u), (q - centre).dot(v)))
+                .collect();
+            hidden += area_inside(&flat, DVec2::ZERO, radius).abs();
+        }
+    }
+    1.0 - hidden / (PI * radius * radius)
+}
+
+#[test]
+fn jittered_cells_converge_to_the_exact_share_of_the_disc() {
+    let base = sphere_scene(&[]);
+    let (view, surface) = visible_surface(&base);
+    let exact: Vec<f32> = surface
+        .samples
+        .iter()
+        .map(|s| {
+            if s.is_empty() {
+                0.0
+            } else {
+                exact_disc_share(&base, s.position) as f32
+            }
+        })
+        .collect();
+    let reference = shade(&base, &view, &surface, LightVisibility::Fraction(exact));
+    let mut table = Vec::new();
+    // 7, 19, 61 and 271 cells.
+    for rings in [1, 2, 4, 9] {
+        let settings = ShadowSettings {
+            rings,
+            ..base.shadows.clone()
+        };
+        let (v, _) = shadows_of(&base, &view, &surface, &settings);
+        table.push((
+            rings,
+            relative_rmse(&shade(&base, &view, &surface, v), &reference),
+        ));
+    }
+    eprintln!("rings, relative RMSE against the exact disc share: {table:?}");
+    for w in table.windows(2) {
+        assert!(w[1].1 < w[0].1, "{table:?}");
+    }
+    assert!(table[3].1 < 0.02, "{table:?}");
+}
+
+/// Regular cells: the same points for every pixel, so the visible fraction takes at
+/// most N + 1 values over the whole image, in contiguous bands: neighbouring
+/// penumbra samples mostly share their level. Jittered cells: each pixel its own
+/// points, so neighbours mostly differ (noise). (The jittered fraction is a sum of
+/// cell areas, so it takes finitely many values too; what jitter changes is where
+/// they fall.)
+#[test]
+fn regular_cells_band_and_jittered_ones_do_not() {
+    let levels = |sampling: &str| {
+        let scene = sphere_scene(&[
+            format!("shadows.sampling={sampling}"),
+            "shadows.rings=3".into(),
+        ]);
+        let (view, surface) = visible_surface(&scene);
+        let (v, _) = shadows_of(&scene, &view, &surface, &scene.shadows);
+        let LightVisibility::Fraction(f) = v else {
+            panic!("a fraction");
+        };
+        let mut distinct: Vec<u32> = f.iter().map(|v| v.to_bits()).collect();
+        distinct.sort_unstable();
+        distinct.dedup();
+        // Horizontal neighbours inside the penumbra with the very same level.
+        let width = surface.width as usize;
+        let partial = |v: f32| v > 0.0 && v < 1.0;
+        let (mut pairs, mut same) = (0, 0);
+        for k in 0..f.len() - 1 {
+            if (k + 1) % width != 0 && partial(f[k]) && partial(f[k + 1]) {
+                pairs += 1;
+                same += (f[k] == f[k + 1]) as usize;
+            }
+        }
+        (distinct.len(), same as f64 / pairs as f64, pairs)
+    };
+    let Light::Sphere(l) = &sphere_scene(&[]).lights[0] else {
+        panic!("a sphere light");
+    };
+    let occluders = Arc::new(SceneOccluders::owned(Vec::new()));
+    let cells =
+        JitteredSoftShadows::new(occluders, l.clone(), 0, 3, CellSampling::Regular, 0).rays();
+    let (regular, banded, pairs) = levels("regular");
+    let (_, noisy, _) = levels("jittered");
+    eprintln!(
+        "{cells} cells: {regular} levels regular; neighbours sharing a level: {banded:.3} regular, {noisy:.3} jittered ({pairs} pairs)"
+    );
+    assert!(regular <= cells + 1, "{regular} levels with {cells} cells");
+    assert!(pairs > 300, "{pairs}");
+    assert!(
+        banded > 0.3 && banded > 2.5 * noisy,
+        "{banded} regular, {noisy} jittered"
+    );
+}
+
+/// Behind a straight edge (a half-plane plate whose edge cuts the disc at distance a
+/// from its centre), the jittered estimate averaged over seeds is the uncovered
+/// share of the disc, 1 − (r² acos(a/r) − a √(r² − a²))/(π r²); regular cells are
+/// off by their quantisation.
+#[test]
+fn averaged_over_seeds_jitter_is_unbiased_behind_a_straight_edge() {
+    // Light: unit sphere at height 10 above the origin; the receiving point at the
+    // origin; a plate at height 5 covering x > 0.15, so its edge cuts the (nearly
+    // central) outline disc at a = 0.3 (projected from the origin, doubled).
+    let light = SphereLight {
+        centre: DVec3::new(0.0, 10.0, 0.0),
+        radius: 1.0,
+        radiance: Vec3::ONE,
+        name: None,
+    };
+    let plate = lumiere::scene::Polygon {
+        vertices: [
+            DVec3::new(0.15, 5.0, -50.0),
+            DVec3::new(0.15, 5.0, 50.0),
+            DVec3::new(50.0, 5.0, 50.0),
+            DVec3::new(50.0, 5.0, -50.0),
+        ]
+        .map(common::vertex)
+        .to_vec(),
+        normal: DVec3::Y,
+        material: 0,
+        object: 0,
+    };
+    let occluders = Arc::new(SceneOccluders::owned(vec![plate]));
+    let x = DVec3::ZERO;
+    // The outline disc: centre at 10 − 1/10, radius √(1 − 1/100); the edge's
+    // projection onto its plane from x lies at 0.15 × 9.9/5.
+    let r = (1.0f64 - 0.01).sqrt();
+    let a = 0.15 * 9.9 / 5.0;
+    let segment = r * r * (a / r).acos() - a * (r * r - a * a).sqrt();
+    let exact = 1.0 - segment / (PI * r * r);
+    let jittered = JitteredSoftShadows::new(
+        occluders.clone(),
+        light.clone(),
+        0,
+        2,
+        CellSampling::Jittered,
+        0,
+    );
+    let seeds = 40_000;
+    let values: Vec<f64> = (0..seeds)
+        .map(|seed| jittered.fraction(x, u32::MAX, &mut Stream::new(seed, 0)))
+        .collect();
+    let mean = values.iter().sum::<f64>() / seeds as f64;
+    let variance = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (seeds - 1) as f64;
+    let standard_error = (variance / seeds as f64).sqrt();
+    eprintln!("exact {exact}, jittered mean {mean} ± {standard_error}");
+    assert!(
+        (mean - exact).abs() < 4.0 * standard_error + 1e-6,
+        "jittered {mean} ± {standard_error}, exact {exact}"
+    );
+    let regular = JitteredSoftShadows::new(occluders, light, 0, 2, CellSampling::Regular, 0);
+    let banded = regular.fraction(x, u32::MAX, &mut Stream::new(0, 0));
+    eprintln!("regular {banded}");
+    // Regular cells are biased: their quantisation is many standard errors off.
+    assert!(
+        (banded - exact).abs() > 6.0 * standard_error,
+        "regular {banded}"
+    );
+}
