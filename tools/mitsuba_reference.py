@@ -6,15 +6,25 @@ against `render cornell-box-point --shadows ray-cast --supersample 4`.
 With --global: the box lit by its quad light with every diffuse bounce, Mitsuba's
 path tracer against the converged radiosity solution, `render radiosity-gathering
 --element-size 10 --patch-size 35 --supersample 4`.
-Both in Mitsuba's scalar_rgb variant with a box filter, at the same size, compared
-with NVIDIA's FLIP on the sRGB images. Not part of the test suite (it needs two
-large PyPI packages): run it by hand.
+With --quad: the box lit by its quad light, direct light only (Mitsuba's `direct`
+integrator, one bounce, emitter sampling), against `render cornell-box --shadows
+umbra-penumbra --supersample 4` (another method with --shadows and --set). This is the
+reference held in tests/references/ for tests/flip_reference.rs:
+
+    python3 tools/mitsuba_reference.py --quad --spp 4096 --self-check \
+        --write tests/references/cornell-box-direct-mitsuba.pfm
+
+All in Mitsuba's scalar_rgb variant with a box filter and a float32 film, at the same
+size, compared with NVIDIA's FLIP on the sRGB images. Not part of the test suite (it
+needs two large PyPI packages): run it by hand. --self-check renders the reference a
+second time with another seed and prints FLIP between the two: the reference's own
+noise. --no-compare renders (and writes) the reference without running lumiere.
 
     python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba flip-evaluator numpy
     cargo build --release
-    /tmp/mi/bin/python tools/mitsuba_reference.py [--global] [--size 256] [--spp 1024]
+    /tmp/mi/bin/python tools/mitsuba_reference.py [--global | --quad] [--size 256] [--spp 1024]
 """
-import argparse, os, struct, subprocess, tempfile
+import argparse, os, subprocess, tempfile, time
 import numpy as np
 import mitsuba as mi
 import flip_evaluator as flip
@@ -59,49 +69,102 @@ def read_pfm(path):
     return data.reshape(height, width, 3)[::-1]
 
 
+def write_pfm(path, image):
+    """Linear RGB as PFM: little-endian (negative scale), rows from the bottom up."""
+    height, width, _ = image.shape
+    with open(path, "wb") as f:
+        f.write(f"PF\n{width} {height}\n-1.0\n".encode())
+        f.write(np.ascontiguousarray(image[::-1], dtype="<f4").tobytes())
+
+
 def srgb(linear):
     c = np.clip(linear, 0.0, 1.0)
     return np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1 / 2.4) - 0.055)
+
+
+def flip_mean(reference, test):
+    _, mean, _ = flip.evaluate(srgb(reference).astype(np.float32), srgb(test).astype(np.float32), "LDR")
+    return mean
 
 
 def main():
     args = argparse.ArgumentParser()
     args.add_argument("--size", type=int, default=256)
     args.add_argument("--spp", type=int, default=1024)
-    args.add_argument("--global", dest="global_", action="store_true")
+    mode = args.add_mutually_exclusive_group()
+    mode.add_argument("--global", dest="global_", action="store_true")
+    mode.add_argument("--quad", action="store_true")
+    # With one emitter sample per camera sample, every camera sample places its own
+    # stratified point on the quad: the shadow rays are spread as well as they can be.
+    args.add_argument("--emitter-samples", type=int, default=1)
+    args.add_argument("--seed", type=int, default=0)
+    args.add_argument("--self-check", action="store_true")
+    args.add_argument("--write", metavar="PATH")
+    args.add_argument("--no-compare", action="store_true")
+    args.add_argument("--shadows", help="lumiere's method (default ray-cast, umbra-penumbra with --quad)")
+    args.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="passed to lumiere")
     a = args.parse_args()
     mi.set_variant("scalar_rgb")
     folder = tempfile.mkdtemp()
-    scene = {
-        "type": "scene",
-        "integrator": ({"type": "path", "max_depth": -1, "rr_depth": 1000} if a.global_ else
-                       {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0}),
-        "sensor": {
-            "type": "perspective", "fov": 39.307648, "fov_axis": "y",
-            "to_world": mi.ScalarTransform4f().look_at(origin=[278, 273, -800], target=[278, 273, 0], up=[0, 1, 0]),
-            "film": {"type": "hdrfilm", "width": a.size, "height": a.size, "rfilter": {"type": "box"}, "pixel_format": "rgb"},
-            "sampler": {"type": "stratified", "sample_count": a.spp},
-        },
-    }
-    if not a.global_:
-        scene["lamp"] = {"type": "point", "position": [278.0, 548.6, 279.5],
+    if a.global_:
+        integrator = {"type": "path", "max_depth": -1, "rr_depth": 1000}
+    else:
+        # Light sampling alone: every surface is diffuse, so BSDF samples would only
+        # add variance (MIS helps glossy surfaces), and emitter sampling is unbiased.
+        integrator = {"type": "direct", "emitter_samples": a.emitter_samples, "bsdf_samples": 0}
+
+    def scene(seed):
+        s = {
+            "type": "scene",
+            "integrator": integrator,
+            "sensor": {
+                "type": "perspective", "fov": 39.307648, "fov_axis": "y",
+                "to_world": mi.ScalarTransform4f().look_at(origin=[278, 273, -800], target=[278, 273, 0], up=[0, 1, 0]),
+                "film": {"type": "hdrfilm", "width": a.size, "height": a.size, "rfilter": {"type": "box"},
+                         "pixel_format": "rgb", "component_format": "float32"},
+                "sampler": {"type": "stratified", "sample_count": a.spp, "seed": seed},
+            },
+        }
+        if not (a.global_ or a.quad):
+            s["lamp"] = {"type": "point", "position": [278.0, 548.6, 279.5],
                          "intensity": {"type": "rgb", "value": [228437.5, 161250.0, 53750.0]}}
-    for name, (file, material) in split_obj("algorithms/models/cornell_box.obj", folder).items():
-        scene[name] = {"type": "obj", "filename": file, "face_normals": True,
+        for name, (file, material) in split_obj("algorithms/models/cornell_box.obj", folder).items():
+            s[name] = {"type": "obj", "filename": file, "face_normals": True,
                        "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": MATERIALS[material]}}}
-        if a.global_ and name == "light":
-            scene[name]["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": [17.0, 12.0, 4.0]}}
-    reference = np.array(mi.render(mi.load_dict(scene)))
+            if (a.global_ or a.quad) and name == "light":
+                s[name]["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": [17.0, 12.0, 4.0]}}
+        return mi.load_dict(s)
+
+    start = time.perf_counter()
+    reference = np.array(mi.render(scene(a.seed)), dtype=np.float32)
+    light = "" if a.global_ else f", {a.emitter_samples} emitter sample(s) per sample"
+    print(f"Mitsuba: {a.size} x {a.size}, {a.spp} spp{light}, seed {a.seed}, {time.perf_counter() - start:.1f} s")
+    print(f"mean radiance, Mitsuba: {reference.mean(axis=(0, 1))}")
+    if a.write:
+        os.makedirs(os.path.dirname(os.path.abspath(a.write)), exist_ok=True)
+        write_pfm(a.write, reference)
+        print(f"reference written to {a.write}")
+    if a.self_check:
+        start = time.perf_counter()
+        again = np.array(mi.render(scene(a.seed + 1)), dtype=np.float32)
+        print(f"second render, seed {a.seed + 1}: {time.perf_counter() - start:.1f} s")
+        print(f"FLIP (mean) between the two Mitsuba renders: {flip_mean(reference, again):.5f}")
+        print(f"mean radiance, second render: {again.mean(axis=(0, 1))}")
+    np.save(os.path.join(folder, "mitsuba.npy"), reference)
+    print(f"images in {folder}")
+    if a.no_compare:
+        return
     ours = os.path.join(folder, "lumiere.pfm")
-    command = (["radiosity-gathering", "--element-size", "10", "--patch-size", "35"] if a.global_ else
-               ["cornell-box-point", "--shadows", "ray-cast"])
+    if a.global_:
+        command = ["radiosity-gathering", "--element-size", "10", "--patch-size", "35"]
+    else:
+        command = ["cornell-box" if a.quad else "cornell-box-point",
+                   "--shadows", a.shadows or ("umbra-penumbra" if a.quad else "ray-cast")]
+    command += [arg for kv in a.set for arg in ("--set", kv)]
     subprocess.run(["target/release/lumiere", "render", *command,
                     "--supersample", "4", "--width", str(a.size), "--height", str(a.size), "-o", ours], check=True)
     test = read_pfm(ours)
-    _, mean, _ = flip.evaluate(srgb(reference).astype(np.float32), srgb(test).astype(np.float32), "LDR")
-    print(f"FLIP (mean) lumiere vs Mitsuba 3: {mean:.5f}")
-    np.save(os.path.join(folder, "mitsuba.npy"), reference)
-    print(f"images in {folder}")
+    print(f"FLIP (mean) lumiere vs Mitsuba 3: {flip_mean(reference, test):.5f}")
     print(f"mean radiance: Mitsuba {reference.mean(axis=(0, 1))}, lumiere {test.mean(axis=(0, 1))}")
 
 

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod flip;
+
 use glam::{DVec2, DVec3};
 use lumiere::raster::{ScreenPolygon, View};
 use lumiere::scene::{Camera, Vertex};

@@ -1,0 +1,116 @@
+//! lumiere against a physically based renderer, inside the suite: the quad-lit
+//! Cornell box, direct light with exact soft shadows, against Mitsuba 3's direct
+//! illumination held in tests/references/cornell-box-direct-mitsuba.pfm (made by
+//! `tools/mitsuba_reference.py --quad`: scalar_rgb, box filter, 4096 spp; its own
+//! noise is FLIP 0.0006 between two seeds). Compared with NVIDIA's FLIP on the sRGB
+//! images, the figure the by-hand Mitsuba comparisons report.
+
+mod common;
+
+use common::flip;
+use lumiere::output::{self, Image};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const REFERENCE: &str = "tests/references/cornell-box-direct-mitsuba.pfm";
+
+/// Mean FLIP the exact soft shadows must stay under.
+const MAX_FLIP: f64 = 0.01;
+
+fn reference() -> Image {
+    output::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(REFERENCE))
+        .unwrap_or_else(|e| panic!("{}", common::error_line(&e)))
+}
+
+/// `lumiere render cornell-box` at the reference's size and sampling, with `shading`
+/// (the shadow method and its settings), read back from linear PFM.
+fn render(name: &str, shading: &[&str]) -> (Image, PathBuf) {
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("flip-reference-{name}.pfm"));
+    let run = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(["render", "cornell-box", "--supersample", "4"])
+        .args(["--width", "256", "--height", "256"])
+        .args(shading)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .expect("running lumiere");
+    assert!(
+        run.status.success(),
+        "lumiere render cornell-box {}: {}",
+        shading.join(" "),
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let image = output::load(&out).unwrap_or_else(|e| panic!("{}", common::error_line(&e)));
+    (image, out)
+}
+
+/// FLIP of `shading`'s render against the reference, within `bound`; beyond it the
+/// render and FLIP's error map are left in the target directory to look at.
+fn check(name: &str, shading: &[&str], bound: f64) -> f64 {
+    let reference = reference();
+    let (image, path) = render(name, shading);
+    let mean = flip::mean(&reference, &image);
+    eprintln!("{name}: FLIP {mean:.5} against Mitsuba (bound {bound})");
+    if mean >= bound {
+        let map = path.with_extension("flip.png");
+        output::save(&flip::magma(&reference, &image), &map, 1.0).unwrap();
+        panic!(
+            "{name}: FLIP {mean:.5} against Mitsuba's direct light, bound {bound}; render {}, error map {}",
+            path.display(),
+            map.display()
+        );
+    }
+    mean
+}
+
+/// Nishita & Nakamae's exact umbra and penumbra: the visible part of the quad at
+/// every sample, so the image converges to the physically based one.
+#[test]
+fn exact_soft_shadows_match_mitsuba() {
+    check("umbra-penumbra", &["--shadows", "umbra-penumbra"], MAX_FLIP);
+}
+
+/// The test can fail: without shadows the box is far from the reference.
+#[test]
+fn an_unshadowed_box_does_not_match() {
+    let reference = reference();
+    let (image, _) = render("none", &["--shadows", "none"]);
+    let mean = flip::mean(&reference, &image);
+    assert!(mean > 3.0 * MAX_FLIP, "FLIP without shadows {mean:.5}");
+}
+
+/// The held reference is what the script writes: 256 x 256 linear radiance, finite,
+/// non-negative, the right way up (PFM rows run bottom to top).
+#[test]
+fn the_reference_is_sane() {
+    let reference = reference();
+    assert_eq!((reference.width, reference.height), (256, 256));
+    assert!(
+        reference
+            .pixels
+            .iter()
+            .all(|p| p.is_finite() && p.min_element() >= 0.0)
+    );
+    // The light quad, seen from below, covers rows 31 to 40 near the top: its
+    // pixels hold its radiance exactly.
+    let light = reference.pixels[36 * 256 + 128];
+    assert!(
+        (light - glam::Vec3::new(17.0, 12.0, 4.0))
+            .abs()
+            .max_element()
+            < 1e-3
+    );
+}
+
+/// Stratified samples over the quad (Cook, Porter & Carpenter 1984), 16 x 16 per
+/// shading sample: the sampled soft shadows, for comparison. About a minute on two
+/// cores, so run by hand: `cargo test --release --test flip_reference -- --ignored`.
+#[test]
+#[ignore = "about a minute on two cores"]
+fn sampled_soft_shadows_against_mitsuba() {
+    check(
+        "ray-cast-16",
+        &["--shadows", "ray-cast", "--set", "shadows.light_samples=16"],
+        MAX_FLIP,
+    );
+}
