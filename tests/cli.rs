@@ -1314,3 +1314,113 @@ fn compare_refuses_a_crafted_pfm_header() {
     assert_clear_error(&run, "big.pfm", &dir.path().join("nothing"));
     assert!(run.stderr.contains("PFM image needs"), "{}", run.stderr);
 }
+
+/// The soft-shadow methods' settings and lights: one clear line each.
+#[test]
+fn soft_shadow_bad_input() {
+    let sphere = "\n[[lights]]\ntype = \"sphere\"\nname = \"bulb\"\nradiance = [1.0, 1.0, 1.0]\n";
+    for (extra, args, fragment) in [
+        (
+            format!("{sphere}centre = [0.0, 1.0, 3.0]\nradius = 0.5\n"),
+            vec![],
+            "lights[1] (`bulb`): the sphere light (radius 0.5) encloses the eye",
+        ),
+        (
+            String::new(),
+            vec!["--shadows", "soft-shadow-volumes", "--set", "shadows.light_points=0"],
+            "shadows.light_points must be between 1 and 1024 (points replacing each light), got 0",
+        ),
+        (
+            String::new(),
+            vec!["--shadows", "jittered-soft-shadows", "--set", "shadows.rings=65"],
+            "shadows.rings must be at most 64",
+        ),
+        (
+            String::new(),
+            vec!["--set", "shadows.sampling=random"],
+            "unknown variant `random`",
+        ),
+        (
+            format!("{sphere}centre = [0.0, 3.0, 0.0]\nradius = 0.5\n"),
+            vec!["--shadows", "umbra-penumbra"],
+            "shadow method `umbra-penumbra` cannot shadow light 1 (sphere `bulb`)",
+        ),
+        (
+            format!("{sphere}centre = [0.0, 3.0, 0.0]\nradius = 0.5\n"),
+            vec!["--shadows", "soft-shadow-volumes"],
+            "shadow method `soft-shadow-volumes` cannot shadow light 1 (sphere `bulb`)",
+        ),
+        (
+            String::new(),
+            vec!["--shadows", "jittered-soft-shadows"],
+            "shadow method `jittered-soft-shadows` cannot shadow light 0 (point)",
+        ),
+        (
+            "\n[[lights]]\ntype = \"polygon\"\nvertices = [[0.0, 2.0, 0.0], [1.0, 2.0, 0.0], [1.0, 2.5, 1.0], [0.0, 2.0, 1.0]]\nradiance = [1.0, 1.0, 1.0]\n".to_string(),
+            vec!["--shadows", "umbra-penumbra"],
+            "the polygon is not planar",
+        ),
+        (
+            "\n[[lights]]\ntype = \"polygon\"\nvertices = [[0.0, 2.0, 0.0], [1.0, 2.0, 0.0], [2.0, 2.0, 0.0]]\nradiance = [1.0, 1.0, 1.0]\n".to_string(),
+            vec!["--shadows", "umbra-penumbra"],
+            "the polygon has zero area",
+        ),
+    ] {
+        let mut all = vec!["s.toml"];
+        all.extend(args);
+        render_error(&[("s.toml", &scene(CAMERA, &extra))], &all, fragment);
+    }
+    // The quad-lit Cornell box under the sphere-light method.
+    let dir = workspace(&[]);
+    let run = lumiere(
+        &[
+            "render",
+            "cornell-box",
+            "--shadows",
+            "jittered-soft-shadows",
+            "-o",
+            "o.png",
+        ],
+        dir.path(),
+    );
+    assert_clear_error(
+        &run,
+        "shadow method `jittered-soft-shadows` cannot shadow light 0 (polygon",
+        &dir.path().join("o.png"),
+    );
+}
+
+/// The soft-shadow methods' buffers: the umbra map's three levels and the blocked
+/// count, listed and written.
+#[test]
+fn soft_shadow_buffers() {
+    let dir = workspace(&[]);
+    let run = lumiere(
+        &["render", "umbra-penumbra", "--aov", "list", "-o", "-"],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("umbra-0"), "{}", run.stdout);
+    let run = lumiere(
+        &[
+            "render",
+            "soft-shadow-volumes",
+            "--test-size",
+            "--aov",
+            "blocked-0",
+            "-o",
+            "b.pfm",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let blocked = lumiere::output::load(&dir.path().join("b.pfm")).unwrap();
+    // Counts of 0 to 4 hidden points, every one of them somewhere.
+    let mut seen = [false; 5];
+    for p in &blocked.pixels {
+        let c = p.x;
+        assert!(c == c.round() && (0.0..=4.0).contains(&c), "{c}");
+        seen[c as usize] = true;
+    }
+    assert!(seen.iter().all(|&s| s), "{seen:?}");
+}
