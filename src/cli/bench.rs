@@ -27,6 +27,13 @@ pub struct Args {
     /// element counts instead of renders.
     #[arg(long, value_delimiter = ',')]
     radiosity_elements: Vec<usize>,
+    /// Samples per pixel along each axis to time (N x N, box filtered).
+    #[arg(long, value_delimiter = ',', default_values_t = [1u32])]
+    supersample: Vec<u32>,
+    /// Scene overrides applied to every render timed (KEY=VALUE, as `render --set`),
+    /// e.g. `shadows.light_points=16`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    sets: Vec<String>,
     /// Runs per measurement; the median is reported.
     #[arg(long, default_value_t = 15)]
     runs: usize,
@@ -39,25 +46,32 @@ pub fn run(args: Args) -> Result<()> {
         return super::bench_radiosity::run(&args.scenes[0], &args.radiosity_elements, runs);
     }
     outln!(
-        "{:<26} {:<15} {:>10} {:>12} {:>14}",
+        "{:<26} {:<22} {:>10} {:>8} {:>12} {:>14}",
         "scene",
         "variant",
         "size",
+        "samples",
         "render (ms)",
         "fill (Mpix/s)"
     )?;
     for scene_name in &args.scenes {
         for (label, variant) in variants(&args, scene_name)? {
-            for &size in &args.sizes {
+            for (&size, &samples) in args
+                .sizes
+                .iter()
+                .flat_map(|s| args.supersample.iter().map(move |n| (s, n)))
+            {
                 let mut sets = vec![
                     format!("camera.width={size}"),
                     format!("camera.height={size}"),
+                    format!("render.supersample={samples}"),
                 ];
                 sets.extend(variant.iter().cloned());
+                sets.extend(args.sets.iter().cloned());
                 let scene = load_scene(scene_name, &sets)?;
                 // A method that refuses one of the scene's lights has nothing to time.
                 if let Err(lumiere::Error::Unsupported(refusal)) = render::render(&scene) {
-                    outln!("{scene_name:<26} {label:<15} refused: {refusal}")?;
+                    outln!("{scene_name:<26} {label:<22} refused: {refusal}")?;
                     break;
                 }
                 render::render(&scene)?;
@@ -66,10 +80,11 @@ pub fn run(args: Args) -> Result<()> {
                 });
                 let fill = fill_rate(&scene, args.runs);
                 outln!(
-                    "{:<26} {:<15} {:>10} {:>12.2} {:>14.1}",
+                    "{:<26} {:<22} {:>10} {:>8} {:>12.2} {:>14.1}",
                     scene_name,
                     label,
                     format!("{size}x{size}"),
+                    format!("{samples}x{samples}"),
                     full.as_secs_f64() * 1e3,
                     fill
                 )?;
