@@ -68,19 +68,16 @@ pub fn cells(rings: u32) -> (Vec<Cell>, f64) {
 }
 
 /// A pointy-top regular hexagon, counter-clockwise.
-pub fn hexagon(centre: DVec2, h: f64) -> Vec<DVec2> {
-    (0..6)
-        .map(|i| {
-            let angle = (30.0 + 60.0 * i as f64).to_radians();
-            centre + DVec2::new(angle.cos(), angle.sin()) * h
-        })
-        .collect()
+pub fn hexagon(centre: DVec2, h: f64) -> [DVec2; 6] {
+    std::array::from_fn(|i| {
+        let angle = (30.0 + 60.0 * i as f64).to_radians();
+        centre + DVec2::new(angle.cos(), angle.sin()) * h
+    })
 }
 
 /// A uniform point of the hexagon at `centre` with circumradius `h`: one of its six
 /// triangles about the centre, then a uniform point of it.
-fn point_in_hexagon(centre: DVec2, h: f64, stream: &mut Stream) -> DVec2 {
-    let corners = hexagon(centre, h);
+fn point_in_hexagon(corners: &[DVec2; 6], centre: DVec2, stream: &mut Stream) -> DVec2 {
     let i = ((stream.next_f64() * 6.0) as usize).min(5);
     let (a, b) = (corners[i], corners[(i + 1) % 6]);
     let (s, t) = (stream.next_f64().sqrt(), stream.next_f64());
@@ -94,7 +91,8 @@ pub struct JitteredSoftShadows {
     /// The light's index: with the seed, the streams' generator.
     index: usize,
     cells: Vec<Cell>,
-    h: f64,
+    /// A cell's corners about its centre.
+    corners: [DVec2; 6],
     sampling: CellSampling,
     seed: u64,
 }
@@ -117,7 +115,7 @@ impl JitteredSoftShadows {
             light,
             index,
             cells,
-            h,
+            corners: hexagon(DVec2::ZERO, h),
             sampling,
             seed,
         }
@@ -161,8 +159,9 @@ impl JitteredSoftShadows {
     /// least a sliver inside; after many misses, the cell's centre pulled onto the
     /// disc).
     fn jittered_point(&self, cell: &Cell, stream: &mut Stream) -> DVec2 {
+        let corners = self.corners.map(|c| cell.centre + c);
         for _ in 0..256 {
-            let p = point_in_hexagon(cell.centre, self.h, stream);
+            let p = point_in_hexagon(&corners, cell.centre, stream);
             if p.length_squared() <= 1.0 {
                 return p;
             }
