@@ -212,10 +212,12 @@ fn pixel_radiance_is_the_light_model_exactly() {
     assert!(lit.iter().all(|p| *p == radiance));
 }
 
-/// Pixels lit by the quad light: radiance ρ/π · L · Φ with Φ by quadrature.
+/// Pixels lit by the quad light: radiance ρ/π · L · Φ with Φ by quadrature (the
+/// unoccluded light: the entry's shadows off).
 #[test]
 fn area_lit_pixels_match_quadrature() {
-    let scene = cornell("cornell-box", 32);
+    let mut scene = cornell("cornell-box", 32);
+    scene.shadows.method = lumiere::shadow::ShadowMethod::None;
     let (_, surface) = visible_surface(&scene);
     let image = render(&scene).unwrap();
     let (quad, normal, radiance) = area_light(&scene);

@@ -39,7 +39,7 @@ fn assert_same(a: &Image, b: &Image, what: &str) {
     assert_eq!(differing, 0, "{what}: {differing} pixels differ");
 }
 
-/// Every shadow method, a soft-shadowed area light, textures, several shading modes
+/// Every shadow method (the soft ones included), a soft-shadowed area light, textures, several shading modes
 /// and a radiosity solution give the same bytes whether the frame is made in bands
 /// of 1, 7 or 64 rows or whole, on one thread or four.
 #[test]
@@ -65,6 +65,23 @@ fn bands_and_threads_do_not_change_a_single_bit() {
     let mut soft = small.to_vec();
     soft.extend(["shadows.method=\"ray-cast\"", "shadows.light_samples=3"]);
     cases.push(("soft".into(), scene("cornell-box", &soft)));
+    for (name, id, extra) in [
+        ("umbra-penumbra", "umbra-penumbra", "shadows.seed=0"),
+        (
+            "soft-shadow-volumes",
+            "soft-shadow-volumes",
+            "shadows.light_points=5",
+        ),
+        ("jittered", "jittered-soft-shadows", "shadows.rings=2"),
+        (
+            "regular cells",
+            "jittered-soft-shadows-regular",
+            "shadows.rings=2",
+        ),
+    ] {
+        let sets = [&small[..], &[extra]].concat();
+        cases.push((name.into(), scene(id, &sets)));
+    }
     cases.push(("mip-mapping".into(), scene("mip-mapping", &small)));
     cases.push(("shading-modes".into(), scene("shading-modes", &small)));
     cases.push((
