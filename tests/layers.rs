@@ -1,5 +1,5 @@
 //! The crate's layers, bottom to top: geometry and settings → the errors → output
-//! (images, files) → texture → scene → raster → shadow, shading, radiosity
+//! (images, files) → texture → scene → raster → shadow, shading, radiosity, media
 //! (siblings) → render → catalogue → the command line. A module names only modules below its
 //! own layer (and its own): read from the sources, every `crate::` path checked.
 
@@ -13,7 +13,7 @@ fn layer(module: &str) -> Option<u32> {
         "texture" => 3,
         "scene" => 4,
         "raster" => 5,
-        "shadow" | "shading" | "radiosity" => 6,
+        "shadow" | "shading" | "radiosity" | "media" => 6,
         "render" => 7,
         "catalogue" => 8,
         "cli" | "main" | "lib" => 9,

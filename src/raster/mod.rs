@@ -29,7 +29,7 @@ pub use project::{
     UvGradient, prepare,
 };
 pub use view::View;
-pub use visibility::{LightVisibility, Visibility, VisiblePart};
+pub use visibility::{LightVisibility, LitIntervals, Visibility, VisiblePart};
 pub use visible_surface::{NO_POLYGON, Sample, VisibleSurface};
 pub use watkins::{
     covered_samples, covered_spans, rasterize, rasterize_depth, rasterize_ids, rasterize_rows,

@@ -61,3 +61,28 @@ impl Visibility {
         self.of(light).map_or(1.0, |v| v.fraction(k))
     }
 }
+
+/// The lit parts of each sample's viewing ray for one light: intervals of distance
+/// from the eye, [near, far] in scene units, outside every shadow volume.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LitIntervals {
+    /// Sample k's intervals are `spans[start[k]..start[k + 1]]`, ascending.
+    pub start: Vec<u32>,
+    pub spans: Vec<[f64; 2]>,
+}
+
+impl LitIntervals {
+    /// Sample `k`'s lit intervals.
+    pub fn of(&self, k: usize) -> &[[f64; 2]] {
+        &self.spans[self.start[k] as usize..self.start[k + 1] as usize]
+    }
+
+    /// The number of samples.
+    pub fn len(&self) -> usize {
+        self.start.len().saturating_sub(1)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}

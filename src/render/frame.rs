@@ -1,6 +1,7 @@
 //! One frame, made in bands of rows.
 
 use super::buffers::FrameBuffers;
+use super::medium::MediumWork;
 use super::renderer::{Rendered, Renderer};
 use crate::Result;
 use crate::output::Image;
@@ -28,6 +29,11 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
         .collect();
     let shadowed = frames.iter().any(Option::is_some);
     let shading = FrameShading::new(scene, &view, direct.clone());
+    let medium = MediumWork::new(renderer, &direct);
+    let volumes_on_screen = medium
+        .as_ref()
+        .map(|m| m.frame(scene, &view))
+        .unwrap_or_default();
     // Gouraud light by light: each direct light's vertex radiance drawn on its own.
     let per_light: Vec<Option<_>> = if integrator.gouraud_per_light(scene, shadowed) {
         (0..scene.lights.len())
@@ -79,7 +85,10 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
                 None => Vec::new(),
             })
             .collect();
-        let radiance = integrator.shade_band(&shading, scene, &band, &visibility, &gouraud);
+        let mut radiance = integrator.shade_band(&shading, scene, &band, &visibility, &gouraud);
+        if let Some(medium) = &medium {
+            medium.apply(scene, &view, &volumes_on_screen, &band, &mut radiance);
+        }
         buffers.add_band(&band, &visibility, &counts, &integrator, scene);
         let pixels_of_band = Image {
             width: view.width,

@@ -12,6 +12,7 @@
 mod buffers;
 mod frame;
 mod integrator;
+mod medium;
 mod renderer;
 
 pub use buffers::{BufferInfo, available_buffers};

@@ -169,11 +169,17 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
             .push("the scene has no lights and nothing emits: the image is black".into());
     }
 
+    let medium = file
+        .medium
+        .as_ref()
+        .map(super::medium_settings::from_file)
+        .transpose()?;
     Ok(Scene {
         camera,
         render,
         shadows,
         radiosity,
+        medium,
         materials: builder.materials,
         objects: builder.objects,
         polygons: builder.polygons,

@@ -25,6 +25,45 @@ pub struct SceneFile {
     pub textures: BTreeMap<String, TextureFile>,
     /// Present: the scene is lit by a radiosity solution instead of its lights.
     pub radiosity: Option<RadiosityFile>,
+    /// Present: a participating medium fills the scene (or a box of it).
+    pub medium: Option<MediumFile>,
+}
+
+/// `[medium]`: a homogeneous participating medium and how its light is computed.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MediumFile {
+    pub extinction: f64,
+    #[serde(default = "albedo")]
+    pub albedo: f64,
+    #[serde(default = "isotropic")]
+    pub phase: crate::settings::PhaseFunction,
+    #[serde(default)]
+    pub g: f64,
+    /// The box the medium fills; absent: everywhere.
+    pub extent: Option<ExtentFile>,
+    #[serde(default)]
+    pub method: crate::settings::MediumMethod,
+    #[serde(default = "nodes")]
+    pub nodes: u32,
+    pub march_step: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExtentFile {
+    pub min: Vec3File,
+    pub max: Vec3File,
+}
+
+fn albedo() -> f64 {
+    1.0
+}
+fn isotropic() -> crate::settings::PhaseFunction {
+    crate::settings::PhaseFunction::Isotropic
+}
+fn nodes() -> u32 {
+    8
 }
 
 /// `[radiosity]`: solver, form factors, meshing, stopping and display.

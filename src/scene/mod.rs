@@ -9,6 +9,7 @@ mod build;
 pub mod file;
 pub mod lights;
 mod materials;
+mod medium_settings;
 mod obj;
 mod radiosity_settings;
 pub mod ray_queries;
@@ -176,6 +177,8 @@ pub struct Scene {
     pub shadows: ShadowSettings,
     /// Lit by a radiosity solution (`[radiosity]`) instead of the lights.
     pub radiosity: Option<crate::settings::RadiositySettings>,
+    /// A participating medium (single scattering from the lights).
+    pub medium: Option<crate::settings::MediumSettings>,
     pub materials: Vec<Material>,
     pub objects: Vec<Object>,
     pub polygons: Vec<Polygon>,

@@ -18,6 +18,7 @@
 
 pub mod cube_faces;
 pub mod jittered_soft_shadows;
+pub mod light_volumes;
 pub mod ray_cast;
 mod receivers;
 pub mod scanline_shadows;

@@ -52,20 +52,57 @@ fn key(p: DVec3) -> [u64; 3] {
     [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]
 }
 
-fn faces_light(normal: DVec3, on_plane: DVec3, light: DVec3) -> bool {
-    normal.dot(light - on_plane) > 0.0
+/// Where a volume's light comes from: a point, or a direction (a distant light,
+/// whose volumes are prisms: their quads are extruded along its travel).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Source {
+    Point(DVec3),
+    /// The unit direction the light travels.
+    Distant(DVec3),
+}
+
+impl Source {
+    fn faces(self, normal: DVec3, on_plane: DVec3) -> bool {
+        match self {
+            Source::Point(light) => normal.dot(light - on_plane) > 0.0,
+            Source::Distant(travel) => normal.dot(-travel) > 0.0,
+        }
+    }
+
+    /// `p` moved `far` away from the light.
+    fn away(self, p: DVec3, far: f64) -> DVec3 {
+        match self {
+            Source::Point(light) => p + (p - light).normalize() * far,
+            Source::Distant(travel) => p + travel * far,
+        }
+    }
 }
 
 /// The shadow polygons of every object for a point light at `light`.
 pub fn shadow_quads(scene: &Scene, light: DVec3) -> Vec<ShadowQuad> {
+    quads_from(scene, Source::Point(light))
+}
+
+/// How far the quads reach beyond the scene (and a point light): 4 times the
+/// diagonal of their bounds.
+pub fn reach(scene: &Scene, source: Source) -> f64 {
+    let light = match source {
+        Source::Point(p) => Some(p),
+        Source::Distant(_) => None,
+    };
     let bounds = Aabb::of(
         scene
             .polygons
             .iter()
             .flat_map(|p| p.positions())
-            .chain([light]),
+            .chain(light),
     );
-    let far = 4.0 * (bounds.max - bounds.min).length();
+    4.0 * (bounds.max - bounds.min).length()
+}
+
+/// The shadow polygons of every object for a light from `source`.
+pub fn quads_from(scene: &Scene, source: Source) -> Vec<ShadowQuad> {
+    let far = reach(scene, source);
     let mut quads = Vec::new();
     for object in 0..scene.objects.len() {
         // Directed edges of the light-facing polygons; an edge walked both ways lies
@@ -80,8 +117,8 @@ pub fn shadow_quads(scene: &Scene, light: DVec3) -> Vec<ShadowQuad> {
         let lone = polygons.len() == 1;
         for p in polygons {
             let corners: Vec<DVec3> = p.positions().collect();
-            let facing = faces_light(p.normal, corners[0], light)
-                || (lone && faces_light(-p.normal, corners[0], light));
+            let facing =
+                source.faces(p.normal, corners[0]) || (lone && source.faces(-p.normal, corners[0]));
             if !facing {
                 continue;
             }
@@ -102,8 +139,7 @@ pub fn shadow_quads(scene: &Scene, light: DVec3) -> Vec<ShadowQuad> {
         // quads in a reproducible order anyway.
         silhouette.sort_by_key(|e| (key(e.0), key(e.1)));
         for (a, b, inside, _) in silhouette {
-            let away = |p: DVec3| p + (p - light).normalize() * far;
-            let corners = [a, b, away(b), away(a)];
+            let corners = [a, b, source.away(b, far), source.away(a, far)];
             let n = newell_normal(&corners).normalize_or_zero();
             if n == DVec3::ZERO {
                 continue; // the edge points at the light: its quad has no area
@@ -240,6 +276,17 @@ pub fn counts(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3
 /// The number of volumes containing the eye: polygons casting a volume (facing the
 /// light, or alone in their object) between the eye and the light.
 fn eye_count(scene: &Scene, eye: DVec3, light: DVec3) -> i32 {
+    eye_count_from(scene, eye, Source::Point(light))
+}
+
+/// The number of volumes from `source` containing the eye (for a distant light, the
+/// polygons casting a volume crossed by the segment from the eye back along the
+/// light's travel, beyond the scene).
+pub fn eye_count_from(scene: &Scene, eye: DVec3, source: Source) -> i32 {
+    let light = match source {
+        Source::Point(p) => p,
+        Source::Distant(travel) => eye - travel * reach(scene, source),
+    };
     let mut per_object = vec![0usize; scene.objects.len()];
     for p in &scene.polygons {
         per_object[p.object] += 1;
@@ -249,8 +296,8 @@ fn eye_count(scene: &Scene, eye: DVec3, light: DVec3) -> i32 {
         .iter()
         .filter(|p| {
             let on_plane = p.vertices[0].position;
-            faces_light(p.normal, on_plane, light)
-                || (per_object[p.object] == 1 && faces_light(-p.normal, on_plane, light))
+            source.faces(p.normal, on_plane)
+                || (per_object[p.object] == 1 && source.faces(-p.normal, on_plane))
         })
         .filter(|p| segment_meets_polygon(eye, light, p))
         .count() as i32

@@ -1,0 +1,106 @@
+//! The frame's participating medium: each direct light's shadow volumes put on the
+//! screen once (Max's light volumes), or the scene's hierarchy for ray marching, and
+//! per band the medium applied to the shaded radiance.
+
+use super::renderer::Renderer;
+use crate::media::{self, Lighting};
+use crate::raster::{LitIntervals, View, VisibleSurface};
+use crate::scene::Scene;
+use crate::settings::MediumMethod;
+use crate::shadow::SharedWork;
+use crate::shadow::light_volumes::{LightVolumes, VolumesOnScreen};
+use glam::Vec3;
+use std::sync::Arc;
+
+/// The view-independent part: the lights' volumes (light volumes) or the scene's
+/// hierarchy (ray marching); nothing when there is no medium or it is empty.
+pub(super) struct MediumWork {
+    volumes: Vec<Option<LightVolumes>>,
+    rays: Option<Arc<crate::shadow::SceneOccluders>>,
+    reach: f64,
+    step: f64,
+}
+
+impl MediumWork {
+    pub(super) fn new(renderer: &Renderer, direct: &[bool]) -> Option<MediumWork> {
+        let scene = renderer.scene();
+        let medium = scene.medium.as_ref().filter(|m| m.extinction > 0.0)?;
+        let volumes: Vec<Option<LightVolumes>> = scene
+            .lights
+            .iter()
+            .zip(direct)
+            .map(|(light, &direct)| direct.then(|| LightVolumes::new(scene, light)).flatten())
+            .collect();
+        let bounds = crate::geometry::bvh::Aabb::of(
+            scene
+                .polygons
+                .iter()
+                .flat_map(|p| p.positions())
+                .chain([scene.camera.eye]),
+        );
+        let size = (bounds.max - bounds.min).length().max(1e-9);
+        let (rays, step) = match medium.method {
+            MediumMethod::LightVolumes => (None, 0.0),
+            MediumMethod::RayMarching => (
+                Some(renderer.occluders()),
+                if medium.march_step > 0.0 {
+                    medium.march_step
+                } else {
+                    size / 500.0
+                },
+            ),
+        };
+        Some(MediumWork {
+            volumes,
+            rays,
+            reach: 4.0 * size,
+            step,
+        })
+    }
+
+    /// The volumes on this view's screen.
+    pub(super) fn frame<'a>(
+        &'a self,
+        scene: &Scene,
+        view: &'a View,
+    ) -> Vec<Option<VolumesOnScreen<'a>>> {
+        if self.rays.is_some() {
+            return Vec::new();
+        }
+        self.volumes
+            .iter()
+            .map(|v| v.as_ref().map(|v| v.frame(scene, view)))
+            .collect()
+    }
+
+    /// The medium applied to one band's radiance; the in-scattered radiance alone
+    /// and, per light, the lit intervals found.
+    pub(super) fn apply(
+        &self,
+        scene: &Scene,
+        view: &View,
+        on_screen: &[Option<VolumesOnScreen>],
+        band: &VisibleSurface,
+        radiance: &mut [Vec3],
+    ) -> (Vec<Vec3>, Vec<Option<LitIntervals>>) {
+        match &self.rays {
+            Some(rays) => {
+                let lighting = Lighting::Marching {
+                    rays,
+                    step: self.step,
+                };
+                let added = media::apply(scene, view, band, radiance, &lighting, self.reach);
+                (added, Vec::new())
+            }
+            None => {
+                let lit: Vec<Option<LitIntervals>> = on_screen
+                    .iter()
+                    .map(|v| v.as_ref().map(|v| v.band(band, self.reach)))
+                    .collect();
+                let lighting = Lighting::Intervals(&lit);
+                let added = media::apply(scene, view, band, radiance, &lighting, self.reach);
+                (added, lit)
+            }
+        }
+    }
+}
