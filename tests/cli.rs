@@ -1424,3 +1424,84 @@ fn soft_shadow_buffers() {
     }
     assert!(seen.iter().all(|&s| s), "{seen:?}");
 }
+
+/// A participating medium's bad input: one clear line each.
+#[test]
+fn medium_bad_input() {
+    for (medium, fragment) in [
+        (
+            "extinction = -0.1",
+            "medium.extinction must be a non-negative number",
+        ),
+        (
+            "extinction = inf",
+            "medium.extinction must be a non-negative number",
+        ),
+        (
+            "extinction = 0.1\nalbedo = 1.5",
+            "medium.albedo must be between 0 and 1",
+        ),
+        (
+            "extinction = 0.1\nalbedo = -0.1",
+            "medium.albedo must be between 0 and 1",
+        ),
+        (
+            "extinction = 0.1\nphase = \"henyey-greenstein\"\ng = 1.0",
+            "medium.g must be strictly between -1 and 1, got 1",
+        ),
+        (
+            "extinction = 0.1\ng = 0.5",
+            "medium.g is Henyey-Greenstein's asymmetry",
+        ),
+        ("extinction = 0.1\nphase = \"mie\"", "unknown variant `mie`"),
+        (
+            "extinction = 0.1\nnodes = 0",
+            "medium.nodes must be between 1 and 64, got 0",
+        ),
+        (
+            "extinction = 0.1\nmarch_step = -1.0",
+            "medium.march_step must be a positive length",
+        ),
+        (
+            "extinction = 0.1\nextent = { min = [0.0, 0.0, 0.0], max = [1.0, -1.0, 1.0] }",
+            "medium.extent needs finite corners with min below max",
+        ),
+        ("albedo = 0.5", "missing field `extinction`"),
+    ] {
+        let extra = format!("\n[medium]\n{medium}\n");
+        render_error(&[("s.toml", &scene(CAMERA, &extra))], &["s.toml"], fragment);
+    }
+}
+
+/// The medium's buffers: lit intervals per light and the in-scattered light.
+#[test]
+fn medium_buffers() {
+    let dir = workspace(&[]);
+    let run = lumiere(
+        &["render", "light-volumes-spot", "--aov", "list", "-o", "-"],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("lit-intervals-0") && run.stdout.contains("inscattered"));
+    let run = lumiere(
+        &[
+            "render",
+            "light-volumes-spot",
+            "--test-size",
+            "--aov",
+            "lit-intervals-0",
+            "-o",
+            "l.pfm",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let lit = lumiere::output::load(&dir.path().join("l.pfm")).unwrap();
+    // One lit interval for most rays, two for those passing through the ball's shadow.
+    let ones = lit.pixels.iter().filter(|p| p.x == 1.0).count();
+    let twos = lit.pixels.iter().filter(|p| p.x == 2.0).count();
+    assert!(
+        ones > 1000 && twos > 100,
+        "{ones} rays with one lit interval, {twos} with two"
+    );
+}

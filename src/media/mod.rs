@@ -30,7 +30,7 @@ pub fn viewing_ray(view: &View, band: &VisibleSurface, k: usize, reach: f64) -> 
     let length = if s.is_empty() {
         reach
     } else {
-        s.depth * ray.length() / view.focal
+        s.depth * (ray.length() / view.focal)
     };
     (ray.normalize(), length)
 }

@@ -34,6 +34,10 @@ enum Kind {
     Counts(usize, ShadowMethod),
     MipLevel,
     Radiosity,
+    /// The lit intervals of each viewing ray for a light (light volumes).
+    LitIntervals(usize),
+    /// The medium's in-scattered radiance alone.
+    Inscattered,
 }
 
 impl Kind {
@@ -53,6 +57,8 @@ impl Kind {
             },
             Kind::MipLevel => "mip-level".into(),
             Kind::Radiosity => "radiosity".into(),
+            Kind::LitIntervals(l) => format!("lit-intervals-{l}"),
+            Kind::Inscattered => "inscattered".into(),
         }
     }
 
@@ -84,12 +90,19 @@ impl Kind {
                 "mip-map level λ read per sample for its diffuse texture (-1: none)".into()
             }
             Kind::Radiosity => "radiosity B of the visible element (linear, flat)".into(),
+            Kind::LitIntervals(l) => format!(
+                "lit intervals of each viewing ray for light {l}, between its shadow volumes (Max's light volumes; colour-mapped)"
+            ),
+            Kind::Inscattered => {
+                "light the medium scatters towards the eye along each viewing ray (linear RGB)"
+                    .into()
+            }
         }
     }
 
     fn channels(self) -> usize {
         match self {
-            Kind::Position | Kind::Normal | Kind::Uv | Kind::Radiosity => 3,
+            Kind::Position | Kind::Normal | Kind::Uv | Kind::Radiosity | Kind::Inscattered => 3,
             _ => 1,
         }
     }
@@ -133,6 +146,23 @@ fn catalogue(
             kinds.push(Kind::Counts(l, method));
         }
         fixed.extend(s.buffers(&format!("shadow-map-{l}")));
+    }
+    if let Some(medium) = scene.medium.as_ref().filter(|m| m.extinction > 0.0) {
+        kinds.push(Kind::Inscattered);
+        if medium.method == crate::settings::MediumMethod::LightVolumes {
+            let direct = integrator.direct_lights(scene);
+            for (l, light) in scene.lights.iter().enumerate() {
+                let volumes = matches!(
+                    light,
+                    crate::scene::Light::Point(_)
+                        | crate::scene::Light::Spot(_)
+                        | crate::scene::Light::Distant(_)
+                );
+                if direct[l] && volumes {
+                    kinds.push(Kind::LitIntervals(l));
+                }
+            }
+        }
     }
     if let Integrator::Radiosity(solution) = integrator {
         fixed.extend(hemicube_buffers(renderer, &solution.mesh));
@@ -206,6 +236,14 @@ pub fn available_buffers(renderer: &Renderer) -> Result<Vec<BufferInfo>> {
         .collect())
 }
 
+/// What the medium made on one band: the in-scattered radiance per sample and each
+/// light's lit intervals (empty without a medium).
+#[derive(Default)]
+pub(super) struct MediumBand {
+    pub inscattered: Vec<glam::Vec3>,
+    pub lit: Vec<Option<crate::raster::LitIntervals>>,
+}
+
 /// The buffers one frame is asked for, filled band by band.
 pub(super) struct FrameBuffers {
     width: u32,
@@ -238,7 +276,7 @@ impl FrameBuffers {
             if let Some(&kind) = kinds.iter().find(|k| &k.name() == name) {
                 let data = match kind {
                     Kind::Polygon | Kind::Element => BufferData::Ids(Vec::new()),
-                    Kind::Counts(..) => BufferData::Counts(Vec::new()),
+                    Kind::Counts(..) | Kind::LitIntervals(_) => BufferData::Counts(Vec::new()),
                     _ => BufferData::Values {
                         channels: kind.channels(),
                         data: Vec::new(),
@@ -267,6 +305,7 @@ impl FrameBuffers {
         band: &VisibleSurface,
         visibility: &Visibility,
         counts: &[Option<Vec<i32>>],
+        medium: &MediumBand,
         integrator: &Integrator,
         scene: &crate::scene::Scene,
     ) {
@@ -283,6 +322,12 @@ impl FrameBuffers {
                     Some(found) => c.extend(found),
                     None => c.extend(std::iter::repeat_n(0, band.samples.len())),
                 },
+                (Kind::LitIntervals(l), BufferData::Counts(c)) => {
+                    match medium.lit.get(*l).and_then(Option::as_ref) {
+                        Some(lit) => c.extend((0..lit.len()).map(|k| lit.of(k).len() as i32)),
+                        None => c.extend(std::iter::repeat_n(0, band.samples.len())),
+                    }
+                }
                 (kind, BufferData::Values { data, .. }) => {
                     for (k, s) in samples {
                         let empty = s.is_empty();
@@ -297,6 +342,14 @@ impl FrameBuffers {
                                 visibility.fraction(l, k)
                             }),
                             Kind::MipLevel => data.push(mip_level(scene, band, k)),
+                            Kind::Inscattered => data.extend(
+                                medium
+                                    .inscattered
+                                    .get(k)
+                                    .copied()
+                                    .unwrap_or_default()
+                                    .to_array(),
+                            ),
                             Kind::Radiosity => data.extend(match integrator {
                                 Integrator::Radiosity(solution) if !empty => {
                                     solution.elements[s.element as usize].to_array()

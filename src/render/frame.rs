@@ -1,6 +1,6 @@
 //! One frame, made in bands of rows.
 
-use super::buffers::FrameBuffers;
+use super::buffers::{FrameBuffers, MediumBand};
 use super::medium::MediumWork;
 use super::renderer::{Rendered, Renderer};
 use crate::Result;
@@ -86,10 +86,22 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
             })
             .collect();
         let mut radiance = integrator.shade_band(&shading, scene, &band, &visibility, &gouraud);
-        if let Some(medium) = &medium {
-            medium.apply(scene, &view, &volumes_on_screen, &band, &mut radiance);
-        }
-        buffers.add_band(&band, &visibility, &counts, &integrator, scene);
+        let medium_band = match &medium {
+            Some(medium) => {
+                let (inscattered, lit) =
+                    medium.apply(scene, &view, &volumes_on_screen, &band, &mut radiance);
+                MediumBand { inscattered, lit }
+            }
+            None => MediumBand::default(),
+        };
+        buffers.add_band(
+            &band,
+            &visibility,
+            &counts,
+            &medium_band,
+            &integrator,
+            scene,
+        );
         let pixels_of_band = Image {
             width: view.width,
             height: band.height,

@@ -128,11 +128,7 @@ impl VolumesOnScreen<'_> {
                         // Eye depth to distance along this sample's ray.
                         let scale = self.view.ray(x as f64 + 0.5, row as f64 + 0.5).length()
                             / self.view.focal;
-                        let end = if s.is_empty() {
-                            ends
-                        } else {
-                            s.depth * scale
-                        };
+                        let end = if s.is_empty() { ends } else { s.depth * scale };
                         start.push(spans.len() as u32);
                         let mut count = self.start;
                         let mut from = 0.0;
