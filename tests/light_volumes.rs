@@ -22,10 +22,8 @@ fn render(scene: &Scene) -> Image {
 }
 
 fn scene_file(text: &str, sets: &[&str]) -> Scene {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("fog.toml");
-    std::fs::write(&path, text).unwrap();
-    scene_with(path.to_str().unwrap(), sets)
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    common::scene_from_text(text, &sets)
 }
 
 #[test]

@@ -191,10 +191,7 @@ transform = [{ scale = 0.8 }, { translate = [0.0, 1.2, 0.0] }]
 "#;
 
 fn sphere_scene(sets: &[String]) -> Scene {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("sphere.toml");
-    std::fs::write(&path, SPHERE_SCENE).unwrap();
-    scene_with(path.to_str().unwrap(), sets)
+    common::scene_from_text(SPHERE_SCENE, sets)
 }
 
 /// The exact visible share of the sphere's outline disc from `x`: the disc less the

@@ -182,10 +182,7 @@ transform = [{ scale = 20.0 }]
 
 /// The plate scene with `extra` objects, loaded from a file.
 fn plate_scene(extra: &str) -> Scene {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("plate.toml");
-    std::fs::write(&path, format!("{PLATE_SCENE}{extra}")).unwrap();
-    load_scene(path.to_str().unwrap(), &[]).unwrap()
+    common::scene_from_text(&format!("{PLATE_SCENE}{extra}"), &[])
 }
 
 /// A thin plate at height 1 over x < 0: seen from the origin it hides the light's

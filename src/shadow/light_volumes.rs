@@ -19,7 +19,7 @@
 //! count, crossings between the eye and the near plane are not seen (the quads are
 //! clipped there).
 
-use super::shadow_volumes::{ShadowQuad, Source, eye_count_from, quads_from, reach};
+use super::shadow_volumes::{ShadowQuad, Source, eye_count_from, on_screen, quads_from, reach};
 use crate::raster::{EdgeTable, LitIntervals, ScreenPolygon, View, VisibleSurface, spans_inside};
 use crate::scene::{Light, Scene};
 use rayon::prelude::*;
@@ -49,15 +49,7 @@ impl LightVolumes {
 
     /// The volumes on one view's screen.
     pub fn frame<'a>(&'a self, scene: &Scene, view: &'a View) -> VolumesOnScreen<'a> {
-        let mut screens = Vec::new();
-        let mut steps = Vec::new();
-        for quad in &self.quads {
-            let facing = quad.outward.dot(view.eye - quad.corners[0]);
-            if let Some(screen) = ScreenPolygon::from_points(view, 0, &quad.corners) {
-                screens.push(screen);
-                steps.push(if facing > 0.0 { 1 } else { -1 });
-            }
-        }
+        let (screens, steps) = on_screen(&self.quads, view);
         VolumesOnScreen {
             view,
             table: EdgeTable::build(&screens, view.height),

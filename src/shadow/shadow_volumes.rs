@@ -151,6 +151,21 @@ pub fn quads_from(scene: &Scene, source: Source) -> Vec<ShadowQuad> {
     quads
 }
 
+/// The quads on a view's screen, each with its step along a line of sight: +1 for
+/// one facing the eye (entering a volume), −1 for one facing away (leaving it).
+pub fn on_screen(quads: &[ShadowQuad], view: &View) -> (Vec<ScreenPolygon>, Vec<i32>) {
+    let mut screens = Vec::new();
+    let mut steps = Vec::new();
+    for quad in quads {
+        let facing = quad.outward.dot(view.eye - quad.corners[0]);
+        if let Some(screen) = ScreenPolygon::from_points(view, 0, &quad.corners) {
+            screens.push(screen);
+            steps.push(if facing > 0.0 { 1 } else { -1 });
+        }
+    }
+    (screens, steps)
+}
+
 /// The pre-pass for a point light: the quads of every object's silhouette.
 pub struct ShadowVolumes {
     light: DVec3,
@@ -184,16 +199,7 @@ impl ShadowVolumes {
         scene: &'a Scene,
         view: &'a View,
     ) -> VolumesFrame<'a> {
-        let mut screens = Vec::new();
-        let mut steps = Vec::new();
-        for quad in &self.quads {
-            // Facing the eye: entering a volume; facing away: leaving it.
-            let facing = quad.outward.dot(view.eye - quad.corners[0]);
-            if let Some(screen) = ScreenPolygon::from_points(view, 0, &quad.corners) {
-                screens.push(screen);
-                steps.push(if facing > 0.0 { 1 } else { -1 });
-            }
-        }
+        let (screens, steps) = on_screen(&self.quads, view);
         VolumesFrame {
             light: self.light,
             scene,

@@ -57,3 +57,13 @@ impl lumiere::scene::resources::Resources for Files {
             .ok_or_else(|| lumiere::Error::Scene(format!("no file {}", path.display())))
     }
 }
+
+/// A scene written to a temporary file and loaded from it, with `--set` overrides
+/// (the path a scene file takes, with its relative paths and messages).
+pub fn scene_from_text(text: &str, sets: &[String]) -> lumiere::Scene {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    lumiere::load_scene(path.to_str().unwrap(), sets)
+        .unwrap_or_else(|e| panic!("{}", error_line(&e)))
+}
