@@ -36,7 +36,15 @@ pub fn hull(points: &[DVec2]) -> Vec<DVec2> {
         }
         chain.pop(); // the last point starts the other chain
     }
-    chain
+    // Nearly collinear points can round to a left turn in both chains, which then
+    // both keep the middle one: keep it once.
+    let mut once: Vec<DVec2> = Vec::with_capacity(chain.len());
+    for p in chain {
+        if !once.contains(&p) {
+            once.push(p);
+        }
+    }
+    once
 }
 
 /// `subject ∩ window` for a convex, counter-clockwise `window` (the subject may be

@@ -9,9 +9,10 @@
 //! disc: its outline circle, centred at C − r²/D along the direction to x with
 //! radius r √(1 − r²/D²) (the exact silhouette, not the disc through C). The disc is
 //! tiled by regular hexagons in K rings around a centre cell (1, 7, 19, 37, 61 …
-//! = 1 + 3K(K + 1) cells), pointy-top, circumradius h = R/(1.5K + ½), the largest
-//! for which the rings cover the disc (the innermost notches of the outer ring lie
-//! (1.5K + ½)h from the centre). One shadow ray goes to each cell:
+//! = 1 + 3K(K + 1) cells), pointy-top, circumradius h = R/(1.5K + ½), for which
+//! the rings cover the disc (the innermost notches of the outer ring lie (1.5K + ½)h
+//! from the centre for odd K, and √((1.5K + ½)² + ¾) h for even K, so for even K a
+//! few per cent larger cells would still cover it). One shadow ray goes to each cell:
 //!
 //! - regular: to the centre of every cell whose centre lies in the disc, all with
 //!   equal weight; every pixel uses the same points, so the visible fraction takes at
@@ -59,7 +60,8 @@ pub fn cells(rings: u32) -> (Vec<Cell>, f64) {
             }
             let centre = DVec2::new(3f64.sqrt() * (q as f64 + 0.5 * r as f64), 1.5 * r as f64) * h;
             let area = area_inside(&hexagon(centre, h), DVec2::ZERO, 1.0);
-            if area > 0.0 {
+            // A hexagon wholly outside the disc leaves a rounding residue of its area.
+            if area > 1e-12 * h * h {
                 cells.push(Cell { centre, area });
             }
         }
