@@ -19,9 +19,19 @@ pub struct Unsupported {
 
 impl std::fmt::Display for Unsupported {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let handles = match self.method {
+            ShadowMethod::ShadowVolumes => {
+                "a hard-shadow method for point, spot and distant lights"
+            }
+            ShadowMethod::UmbraPenumbra | ShadowMethod::SoftShadowVolumes => {
+                "a soft-shadow method for polygon lights (and point and spot lights)"
+            }
+            ShadowMethod::JitteredSoftShadows => "a soft-shadow method for sphere lights",
+            _ => "a hard-shadow method for point and spot lights",
+        };
         write!(
             f,
-            "shadow method `{}` cannot shadow {}: it is a hard-shadow method for point and spot lights; use `ray-cast` (it samples extended lights) or `none`",
+            "shadow method `{}` cannot shadow {}: it is {handles}; use `ray-cast` (it samples extended lights) or `none`",
             self.method.name(),
             self.light
         )

@@ -682,11 +682,14 @@ fn five_kinds_of_light_render() {
     );
     let text = scene(CAMERA, &lights);
     let dir = workspace(&[("s.toml", &text)]);
-    for method in [
-        "shadow-map",
-        "scanline",
-        "shadow-volumes",
-        "shadow-polygons",
+    for (method, refused) in [
+        ("shadow-map", "light 2 (distant `sun`)"),
+        ("scanline", "light 2 (distant `sun`)"),
+        (
+            "shadow-volumes",
+            "light 3 (sphere): it is a hard-shadow method for point, spot and distant lights",
+        ),
+        ("shadow-polygons", "light 2 (distant `sun`)"),
     ] {
         let run = lumiere(
             &["render", "s.toml", "--shadows", method, "-o", "o.png"],
@@ -694,7 +697,7 @@ fn five_kinds_of_light_render() {
         );
         assert_clear_error(
             &run,
-            &format!("shadow method `{method}` cannot shadow light 2 (distant `sun`)"),
+            &format!("shadow method `{method}` cannot shadow {refused}"),
             &dir.path().join("o.png"),
         );
     }

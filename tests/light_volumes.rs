@@ -242,3 +242,28 @@ fn a_denser_absorbing_medium_never_brightens() {
         previous = Some(image.pixels);
     }
 }
+
+/// Crow's volumes for a distant light (prisms along its travel) shadow the surfaces
+/// exactly: the blinds' sunlit floor and walls equal ray casting sample for sample.
+#[test]
+fn under_the_sun_shadow_volumes_are_ray_casting() {
+    let scene = scene_with(
+        "light-volumes-blinds",
+        &["camera.width=128", "camera.height=96"],
+    );
+    let (view, surface) = visible_surface(&scene);
+    let fractions = |method| match lumiere::shadow::compute(&scene, &view, &surface, method)
+        .unwrap()
+        .per_light
+        .remove(0)
+    {
+        Some(lumiere::raster::LightVisibility::Fraction(f)) => f,
+        _ => panic!("a fraction"),
+    };
+    let crow = fractions(lumiere::shadow::ShadowMethod::ShadowVolumes);
+    let cast = fractions(lumiere::shadow::ShadowMethod::RayCast);
+    let lit = cast.iter().filter(|&&v| v == 1.0).count();
+    let differing = crow.iter().zip(&cast).filter(|(a, b)| a != b).count();
+    assert!(lit > 100, "{lit} sunlit samples");
+    assert_eq!(differing, 0, "{differing} samples differ from ray casting");
+}

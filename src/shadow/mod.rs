@@ -90,6 +90,7 @@ pub fn check(scene: &Scene, index: usize, method: ShadowMethod) -> Result<(), Un
             matches!(light, Light::Point(_) | Light::Spot(_) | Light::Polygon(_))
         }
         ShadowMethod::JitteredSoftShadows => matches!(light, Light::Sphere(_)),
+        ShadowMethod::ShadowVolumes => !matches!(light, Light::Polygon(_) | Light::Sphere(_)),
         _ => light.position().is_some(),
     };
     match supported {
@@ -146,6 +147,11 @@ pub fn prepare(
                     settings.seed,
                 ),
             )));
+        }
+        (ShadowMethod::ShadowVolumes, Light::Distant(sun)) => {
+            let source = shadow_volumes::Source::Distant(sun.direction);
+            let volumes = shadow_volumes::ShadowVolumes::from_source(scene, source);
+            return Ok(Some(Arc::new(volumes)));
         }
         _ => {}
     }

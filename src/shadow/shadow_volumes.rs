@@ -25,7 +25,7 @@
 //! it is nearer than the visible surface by a relative 1e-9 (the quads start on the
 //! occluders' own edges). Scene key: `[shadows] method = "shadow-volumes"`.
 
-use super::{BandShadows, FrameShadows, LightShadows, per_sample};
+use super::{BandShadows, FrameShadows, LightShadows, faces_away, per_sample};
 use crate::geometry::bvh::Aabb;
 use crate::geometry::polygon::{centroid, newell_normal};
 use crate::raster::{
@@ -168,15 +168,23 @@ pub fn on_screen(quads: &[ShadowQuad], view: &View) -> (Vec<ScreenPolygon>, Vec<
 
 /// The pre-pass for a point light: the quads of every object's silhouette.
 pub struct ShadowVolumes {
-    light: DVec3,
+    source: Source,
     quads: Vec<ShadowQuad>,
+    /// How far the quads reach (a distant light's self-shadow test looks that far).
+    reach: f64,
 }
 
 impl ShadowVolumes {
     pub fn new(scene: &Scene, light: DVec3) -> ShadowVolumes {
+        ShadowVolumes::from_source(scene, Source::Point(light))
+    }
+
+    /// The volumes of a light from `source`: a point, or a distant light's prisms.
+    pub fn from_source(scene: &Scene, source: Source) -> ShadowVolumes {
         ShadowVolumes {
-            light,
-            quads: shadow_quads(scene, light),
+            source,
+            quads: quads_from(scene, source),
+            reach: reach(scene, source),
         }
     }
 }
@@ -188,9 +196,13 @@ impl LightShadows for ShadowVolumes {
 }
 
 impl ShadowVolumes {
-    /// The light's position.
+    /// The light's position (for a distant light, a point beyond the scene against
+    /// its travel from the origin).
     pub fn light(&self) -> DVec3 {
-        self.light
+        match self.source {
+            Source::Point(p) => p,
+            Source::Distant(travel) => -travel * self.reach,
+        }
     }
 
     /// The quads on this view's screen, in an edge table, and the eye's count.
@@ -201,19 +213,21 @@ impl ShadowVolumes {
     ) -> VolumesFrame<'a> {
         let (screens, steps) = on_screen(&self.quads, view);
         VolumesFrame {
-            light: self.light,
+            source: self.source,
+            reach: self.reach,
             scene,
             view,
             table: EdgeTable::build(&screens, view.height),
             screens,
             steps,
-            start: eye_count(scene, view.eye, self.light),
+            start: eye_count_from(scene, view.eye, self.source),
         }
     }
 }
 
 pub(super) struct VolumesFrame<'a> {
-    light: DVec3,
+    source: Source,
+    reach: f64,
     scene: &'a Scene,
     view: &'a View,
     screens: Vec<ScreenPolygon>,
@@ -230,9 +244,24 @@ const GROUP_ROWS: usize = 8;
 impl FrameShadows for VolumesFrame<'_> {
     fn band(&self, band: &VisibleSurface) -> BandShadows {
         let counts = self.counts(band);
-        let visibility = per_sample(self.scene, self.view, band, self.light, |k, _, _| {
-            counts[k] <= 0
-        });
+        let visibility = match self.source {
+            Source::Point(light) => {
+                per_sample(self.scene, self.view, band, light, |k, _, _| counts[k] <= 0)
+            }
+            // The self-shadow rule towards a point beyond the scene against the travel.
+            Source::Distant(travel) => band
+                .samples
+                .par_iter()
+                .zip(&counts)
+                .map(|(s, &count)| {
+                    let towards = s.position - travel * self.reach;
+                    let lit = !s.is_empty()
+                        && count <= 0
+                        && !faces_away(self.scene, self.view, s.polygon, s.position, towards);
+                    if lit { 1.0 } else { 0.0 }
+                })
+                .collect(),
+        };
         BandShadows {
             visibility: LightVisibility::Fraction(visibility),
             counts: Some(counts),
@@ -277,12 +306,6 @@ pub fn counts(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3
     let volumes = ShadowVolumes::new(scene, light);
     let counts = volumes.frame(scene, view).band(surface).counts;
     counts.expect("shadow volumes count")
-}
-
-/// The number of volumes containing the eye: polygons casting a volume (facing the
-/// light, or alone in their object) between the eye and the light.
-fn eye_count(scene: &Scene, eye: DVec3, light: DVec3) -> i32 {
-    eye_count_from(scene, eye, Source::Point(light))
 }
 
 /// The number of volumes from `source` containing the eye (for a distant light, the
