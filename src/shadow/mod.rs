@@ -13,8 +13,12 @@
 //! sees, faces away from a point light is shadowed by every method; the methods
 //! differ in how they find the cast shadows. Spot lights are point lights with a
 //! directional intensity: every hard-shadow method shadows them from their position.
-//! Ray casting also samples extended lights. A method asked for a light it cannot
-//! handle refuses it (`Unsupported`), naming both: nothing is silently unshadowed.
+//! Ray casting also samples extended lights, and shadow volumes also shadow distant
+//! lights. The soft-shadow methods shadow polygon lights (`umbra_penumbra` exactly,
+//! `soft_shadow_volumes` by points) or sphere lights (`jittered_soft_shadows`);
+//! `light_volumes` cuts viewing rays, not visible samples, for the medium. A method
+//! asked for a light it cannot handle refuses it (`Unsupported`), naming both:
+//! nothing is silently unshadowed.
 
 pub mod cube_faces;
 pub mod jittered_soft_shadows;
