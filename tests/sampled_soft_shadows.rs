@@ -21,18 +21,10 @@ use lumiere::shading::FrameShading;
 use lumiere::shadow::jittered_soft_shadows::JitteredSoftShadows;
 use lumiere::shadow::shadow_volumes::ShadowVolumes;
 use lumiere::shadow::soft_shadow_volumes::SoftShadowVolumes;
-use lumiere::shadow::{self, LightShadows, SceneOccluders, ShadowMethod, SharedWork};
+use lumiere::shadow::{self, LightShadows, SceneOccluders, ShadowMethod};
 use lumiere::{Scene, load_scene};
 use std::f64::consts::PI;
 use std::sync::Arc;
-
-struct Fresh<'a>(&'a Scene);
-
-impl SharedWork for Fresh<'_> {
-    fn occluders(&self) -> Arc<SceneOccluders> {
-        Arc::new(SceneOccluders::owned(self.0.polygons.clone()))
-    }
-}
 
 fn scene_with(id: &str, sets: &[String]) -> Scene {
     load_scene(id, sets).unwrap_or_else(|e| panic!("{}", common::error_line(&e)))
@@ -45,10 +37,9 @@ fn shadows_of(
     surface: &VisibleSurface,
     settings: &ShadowSettings,
 ) -> (LightVisibility, Option<Vec<i32>>) {
-    let prepared = shadow::prepare(scene, 0, settings, &Fresh(scene))
+    let band = shadow::light_band(scene, view, surface, settings, 0)
         .unwrap()
         .expect("shadowed");
-    let band = prepared.frame(scene, view).band(surface);
     (band.visibility, band.counts)
 }
 

@@ -13,18 +13,11 @@ use lumiere::geometry::lambert_contour::projected_solid_angle;
 use lumiere::raster::{LightVisibility, View, VisiblePart, VisibleSurface};
 use lumiere::render::visible_surface;
 use lumiere::scene::Light;
-use lumiere::shadow::umbra_penumbra::{LIT, PENUMBRA, UMBRA, visible_part_everywhere};
-use lumiere::shadow::{self, SceneOccluders, ShadowMethod, SharedWork};
+use lumiere::shadow::umbra_penumbra::{
+    LIT, PENUMBRA, UMBRA, UmbraPenumbra, visible_part_everywhere,
+};
+use lumiere::shadow::{self, ShadowMethod};
 use lumiere::{Scene, load_scene};
-use std::sync::Arc;
-
-struct Fresh<'a>(&'a Scene);
-
-impl SharedWork for Fresh<'_> {
-    fn occluders(&self) -> Arc<SceneOccluders> {
-        Arc::new(SceneOccluders::owned(self.0.polygons.clone()))
-    }
-}
 
 /// Light 0's visibility and the method's counts buffer on the whole frame.
 fn band_of(
@@ -36,10 +29,9 @@ fn band_of(
         method,
         ..scene.shadows.clone()
     };
-    let prepared = shadow::prepare(scene, 0, &settings, &Fresh(scene))
+    let band = shadow::light_band(scene, &view, &surface, &settings, 0)
         .unwrap()
         .expect("shadowed");
-    let band = prepared.frame(scene, &view).band(&surface);
     let counts = band.counts.unwrap_or_default();
     (view, surface, band.visibility, counts)
 }
@@ -82,6 +74,7 @@ fn equals_brute_force(scene: &Scene) -> (usize, usize) {
         panic!("an exact method gives visible parts");
     };
     let light = light_outline(scene);
+    let brute_force = UmbraPenumbra::new(scene, &scene.lights[0]).unwrap();
     let (mut penumbra, mut umbra) = (0, 0);
     let mut worst = 0.0f64;
     for (k, s) in surface.samples.iter().enumerate() {
@@ -93,7 +86,7 @@ fn equals_brute_force(scene: &Scene) -> (usize, usize) {
             continue; // the light is behind: no irradiance either way
         }
         let found = share(&light, s.position, n, parts[k].as_ref());
-        let reference = visible_part_everywhere(scene, &scene.lights[0], s.position).unwrap();
+        let reference = brute_force.everywhere(s.position).unwrap();
         let exact = share(&light, s.position, n, Some(&reference));
         worst = worst.max((found - exact).abs());
         assert!(

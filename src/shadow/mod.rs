@@ -179,6 +179,29 @@ pub fn prepare(
     }))
 }
 
+/// Scene-wide work built afresh for one call (the renderer keeps its own).
+struct FreshWork<'a>(&'a Scene);
+
+impl SharedWork for FreshWork<'_> {
+    fn occluders(&self) -> Arc<SceneOccluders> {
+        Arc::new(SceneOccluders::owned(self.0.polygons.clone()))
+    }
+}
+
+/// Light `index`'s shadows by `settings` on a whole visible-surface buffer, its
+/// pre-pass built afresh, with the method's counts; `None` when the method casts no
+/// shadows (for tests and one-off measurements).
+pub fn light_band(
+    scene: &Scene,
+    view: &View,
+    surface: &VisibleSurface,
+    settings: &ShadowSettings,
+    index: usize,
+) -> Result<Option<BandShadows>, Unsupported> {
+    let shadows = prepare(scene, index, settings, &FreshWork(scene))?;
+    Ok(shadows.map(|s| s.frame(scene, view).band(surface)))
+}
+
 /// Every light's visibility on a whole visible-surface buffer by `method`, each
 /// pre-pass built afresh (for tests and one-off measurements; renders go through
 /// the renderer, which keeps pre-passes between frames).
@@ -188,16 +211,10 @@ pub fn visibility(
     surface: &VisibleSurface,
     settings: &ShadowSettings,
 ) -> Result<Visibility, Unsupported> {
-    struct Fresh<'a>(&'a Scene);
-    impl SharedWork for Fresh<'_> {
-        fn occluders(&self) -> Arc<SceneOccluders> {
-            Arc::new(SceneOccluders::owned(self.0.polygons.clone()))
-        }
-    }
     let mut per_light = Vec::new();
     for index in 0..scene.lights.len() {
-        let shadows = prepare(scene, index, settings, &Fresh(scene))?;
-        per_light.push(shadows.map(|s| s.frame(scene, view).band(surface).visibility));
+        let band = light_band(scene, view, surface, settings, index)?;
+        per_light.push(band.map(|b| b.visibility));
     }
     Ok(Visibility { per_light })
 }

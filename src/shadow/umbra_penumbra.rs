@@ -897,25 +897,32 @@ impl UmbraPenumbra {
 
 /// The visible part of `light` (a polygon light) from `x` with every occluder of the
 /// scene subtracted, no umbra or penumbra polygon consulted: the brute-force
-/// reference the construction must equal.
+/// reference the construction must equal (`UmbraPenumbra::everywhere` for many
+/// points, its occluders found once).
 pub fn visible_part_everywhere(scene: &Scene, light: &Light, x: DVec3) -> Option<VisiblePart> {
-    let method = UmbraPenumbra::new(scene, light)?;
-    method.emitter.plane?;
-    let all: Vec<u32> = (0..method.occluders.len() as u32).collect();
-    let per_piece: Vec<(bool, Vec<u32>)> = method
-        .emitter
-        .pieces
-        .iter()
-        .map(|_| (false, all.clone()))
-        .collect();
-    Some(method.visible_part(x, &per_piece).unwrap_or_else(|| {
-        VisiblePart {
-            contours: method
-                .emitter
-                .pieces
-                .iter()
-                .map(|p| (p.clone(), 1.0))
-                .collect(),
-        }
-    }))
+    UmbraPenumbra::new(scene, light)?.everywhere(x)
+}
+
+impl UmbraPenumbra {
+    /// As `visible_part_everywhere`, for this light (`None` for a point light).
+    pub fn everywhere(&self, x: DVec3) -> Option<VisiblePart> {
+        self.emitter.plane?;
+        let all: Vec<u32> = (0..self.occluders.len() as u32).collect();
+        let per_piece: Vec<(bool, Vec<u32>)> = self
+            .emitter
+            .pieces
+            .iter()
+            .map(|_| (false, all.clone()))
+            .collect();
+        Some(self.visible_part(x, &per_piece).unwrap_or_else(|| {
+            VisiblePart {
+                contours: self
+                    .emitter
+                    .pieces
+                    .iter()
+                    .map(|p| (p.clone(), 1.0))
+                    .collect(),
+            }
+        }))
+    }
 }
