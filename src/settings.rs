@@ -25,6 +25,8 @@ pub struct RenderSettings {
     pub supersample: u32,
     /// Radiance of pixels where no surface is seen.
     pub background: glam::Vec3,
+    /// An environment (index into `Scene::environments`) shown there instead.
+    pub backdrop: Option<usize>,
     /// Pixel rows per band of the frame (0: chosen from a memory budget). The image
     /// does not depend on it; memory grows with it.
     pub band_rows: u32,

@@ -28,7 +28,8 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
         .map(|s| s.as_ref().map(|s| s.frame(scene, &view)))
         .collect();
     let shadowed = frames.iter().any(Option::is_some);
-    let shading = FrameShading::new(scene, &view, direct.clone());
+    let shading = FrameShading::new(scene, &view, direct.clone())
+        .with_environments(renderer.environment_maps()?.to_vec());
     let medium = MediumWork::new(renderer, &direct);
     let volumes_on_screen = medium
         .as_ref()

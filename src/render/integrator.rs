@@ -145,7 +145,7 @@ impl Integrator {
                 .map(|k| {
                     let s = &band.samples[k];
                     if s.is_empty() {
-                        return scene.render.background;
+                        return shading.background(band, k);
                     }
                     // Radiosity leaves the front only; a surface seen from behind
                     // is black.
@@ -157,7 +157,9 @@ impl Integrator {
                         Some(scale) => emitted + (s.color - emitted) * scale,
                         None => s.color,
                     };
-                    solved + shading.lit(band, k, visibility, gouraud)
+                    solved
+                        + shading.lit(band, k, visibility, gouraud)
+                        + shading.environment(band, k)
                 })
                 .collect(),
         }

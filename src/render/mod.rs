@@ -10,6 +10,7 @@
 //! filter gives the band's pixels (and the buffers asked for take their rows).
 
 mod buffers;
+pub mod capture;
 mod frame;
 mod integrator;
 mod medium;
@@ -17,7 +18,7 @@ mod renderer;
 
 pub use buffers::{BufferInfo, available_buffers};
 pub use integrator::Integrator;
-pub use renderer::{Prepasses, Rendered, Renderer};
+pub use renderer::{EnvironmentMaps, Prepasses, Rendered, Renderer};
 
 use crate::Result;
 use crate::output::Image;

@@ -2,17 +2,20 @@
 //! them. The occluders' hierarchy, each light's shadow pre-pass (shadow maps, shadow
 //! polygons, shadow volumes' quads, Bouknight & Kelley's projections) and the
 //! radiosity solution are built the first time a frame needs them and reused after
-//! (texture pyramids and summed-area tables are built once, with the scene).
+//! (texture pyramids and summed-area tables are built once, with the scene), and so
+//! are environment maps captured from the scene.
 //! Moving the camera invalidates none of it; moving a light, only that light's
 //! shadows; changing the shadow settings, every light's shadows.
 
+use super::capture::capture_cube;
 use super::frame::render_frame;
 use super::integrator::{Integrator, lit_directly};
 use crate::output::{Buffer, Image};
 use crate::radiosity::{self, Solution};
-use crate::scene::{Camera, Light, Scene};
+use crate::scene::{Camera, EnvironmentSource, Light, Scene};
 use crate::settings::ShadowSettings;
 use crate::shadow::{self, LightShadows, SceneOccluders, SharedWork};
+use crate::texture::environment::EnvironmentMap;
 use crate::{Error, Result};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
@@ -26,7 +29,12 @@ pub struct Prepasses {
     pub light_shadows: usize,
     /// Radiosity solutions.
     pub radiosity: usize,
+    /// Environment maps rendered from the scene (captures).
+    pub captures: usize,
 }
+
+/// Per scene environment, its map (`None`: not shown).
+pub type EnvironmentMaps = Arc<[Option<Arc<EnvironmentMap>>]>;
 
 /// A frame and the buffers asked for.
 pub struct Rendered {
@@ -39,9 +47,13 @@ pub struct Renderer {
     occluders: Mutex<Option<Arc<SceneOccluders>>>,
     lights: Vec<Mutex<Option<Arc<dyn LightShadows>>>>,
     radiosity: Mutex<Option<Arc<Solution>>>,
+    environments: Mutex<Option<EnvironmentMaps>>,
+    /// Whether captured environments are made (not inside a capture).
+    captures: bool,
     built_occluders: AtomicUsize,
     built_light_shadows: AtomicUsize,
     built_radiosity: AtomicUsize,
+    built_captures: AtomicUsize,
     hemicube_element: usize,
 }
 
@@ -52,11 +64,52 @@ impl Renderer {
             scene,
             occluders: Mutex::new(None),
             radiosity: Mutex::new(None),
+            environments: Mutex::new(None),
+            captures: true,
             built_occluders: AtomicUsize::new(0),
             built_light_shadows: AtomicUsize::new(0),
             built_radiosity: AtomicUsize::new(0),
+            built_captures: AtomicUsize::new(0),
             hemicube_element: 0,
         }
+    }
+
+    /// A renderer whose frames show no captured environment (the renderer a capture
+    /// itself uses).
+    pub fn without_captures(scene: Scene) -> Renderer {
+        Renderer {
+            captures: false,
+            ..Renderer::new(scene)
+        }
+    }
+
+    /// The scene's environment maps, captures rendered the first time they are
+    /// needed (`None` inside a capture).
+    pub fn environment_maps(&self) -> Result<EnvironmentMaps> {
+        let mut slot = self.environments.lock().expect("no poisoned lock");
+        if let Some(maps) = slot.as_ref() {
+            return Ok(maps.clone());
+        }
+        let mut maps = Vec::with_capacity(self.scene.environments.len());
+        for e in &self.scene.environments {
+            maps.push(match &e.source {
+                EnvironmentSource::Map(map) => Some(map.clone()),
+                EnvironmentSource::Capture(c) if self.captures => {
+                    let map = capture_cube(&self.scene, c.at, c.resolution, &c.hide, c.filter)?;
+                    self.built_captures.fetch_add(1, Ordering::Relaxed);
+                    Some(Arc::new(map))
+                }
+                EnvironmentSource::Capture(_) => None,
+            });
+        }
+        let maps: EnvironmentMaps = maps.into();
+        *slot = Some(maps.clone());
+        Ok(maps)
+    }
+
+    /// Captured environments depend on the lights and shadows: made again.
+    fn forget_captures(&self) {
+        *self.environments.lock().expect("no poisoned lock") = None;
     }
 
     pub fn scene(&self) -> &Scene {
@@ -69,6 +122,7 @@ impl Renderer {
             occluders: self.built_occluders.load(Ordering::Relaxed),
             light_shadows: self.built_light_shadows.load(Ordering::Relaxed),
             radiosity: self.built_radiosity.load(Ordering::Relaxed),
+            captures: self.built_captures.load(Ordering::Relaxed),
         }
     }
 
@@ -107,6 +161,7 @@ impl Renderer {
         }
         self.scene.lights[index] = light;
         *self.lights[index].lock().expect("no poisoned lock") = None;
+        self.forget_captures();
         Ok(())
     }
 
@@ -116,6 +171,7 @@ impl Renderer {
         for slot in &self.lights {
             *slot.lock().expect("no poisoned lock") = None;
         }
+        self.forget_captures();
     }
 
     /// Hands the renderer a radiosity solution of its scene (solved elsewhere, with

@@ -7,8 +7,8 @@ use super::resources::Resources;
 use super::shapes::{self, Faces};
 use super::{
     DistantLight, Light, Material, Object, ObjectFrame, PointLight, Polygon, PolygonLight,
-    RenderSettings, Scene, ShadowSettings, SphereLight, SpotDistribution, SpotLight, materials,
-    obj, textures, transform, validate,
+    RenderSettings, Scene, ShadowSettings, SphereLight, SpotDistribution, SpotLight, environments,
+    materials, obj, textures, transform, validate,
 };
 use crate::error::ensure_valid;
 use crate::geometry::polygon::{area, centroid, newell_normal, non_planarity};
@@ -41,6 +41,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         supersample: file.render.supersample,
         background: validate::colour("render.background", file.render.background)?,
         band_rows: file.render.band_rows,
+        backdrop: None,
     };
     ensure_valid!(
         file.render.exposure.is_finite() && file.render.exposure > 0.0,
@@ -136,14 +137,55 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
             .textures
             .push(Arc::new(textures::load(name, t, resources)?));
     }
+    let mut environments = Vec::new();
+    let mut hidden = Vec::new();
+    let mut environment_index = HashMap::new();
+    for (name, e) in &file.environments {
+        let (environment, hide) = environments::load(name, e, resources)?;
+        environment_index.insert(name.clone(), environments.len());
+        environments.push(environment);
+        hidden.push(hide);
+    }
+    let backdrop = file
+        .render
+        .backdrop
+        .as_ref()
+        .map(|name| named(&environment_index, name, "render.backdrop", "environment"))
+        .transpose()?;
+    let render = RenderSettings { backdrop, ..render };
     for (name, m) in &file.materials {
-        let material = materials::from_file(name, m, &builder.texture_index)?;
+        let material = materials::from_file(name, m, &builder.texture_index, &environment_index)?;
         builder.add_material(material);
     }
     for (index, object) in file.objects.iter().enumerate() {
         builder
             .add_object(index, object, resources)
             .map_err(|e| e.within(format!("objects[{index}]")))?;
+    }
+    for ((environment, hide), name) in environments
+        .iter_mut()
+        .zip(&hidden)
+        .zip(file.environments.keys())
+    {
+        if let super::EnvironmentSource::Capture(capture) = &mut environment.source {
+            for object in hide {
+                let Some(index) = builder.objects.iter().position(|o| &o.name == object) else {
+                    let mut known: Vec<&str> =
+                        builder.objects.iter().map(|o| o.name.as_str()).collect();
+                    known.sort();
+                    known.dedup();
+                    let key = format!("environments.{name}.hide");
+                    return Err(Error::invalid(
+                        &key,
+                        format!(
+                            "{key}: no object is named `{object}` (named: {})",
+                            known.join(", ")
+                        ),
+                    ));
+                };
+                capture.hide.push(index);
+            }
+        }
     }
     let mut lights = Vec::new();
     for (index, light) in file.lights.iter().enumerate() {
@@ -163,7 +205,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         builder
             .warnings
             .push("the scene has no objects: the image shows the background only".into());
-    } else if lights.is_empty() && radiosity.is_none() {
+    } else if lights.is_empty() && radiosity.is_none() && environments.is_empty() {
         builder
             .warnings
             .push("the scene has no lights and nothing emits: the image is black".into());
@@ -185,6 +227,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         polygons: builder.polygons,
         lights,
         textures: builder.textures,
+        environments,
         warnings: builder.warnings,
     })
 }
@@ -650,4 +693,29 @@ fn check_keys(o: &ObjectFile) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The index of `name` among `known` (things of `kind`), or an error at `key` that
+/// lists the known names.
+pub(super) fn named(
+    known: &HashMap<String, usize>,
+    name: &str,
+    key: &str,
+    kind: &str,
+) -> Result<usize> {
+    known.get(name).copied().ok_or_else(|| {
+        let mut names: Vec<&str> = known.keys().map(String::as_str).collect();
+        names.sort();
+        Error::invalid(
+            key,
+            format!(
+                "{key}: unknown {kind} `{name}` (known: {})",
+                if names.is_empty() {
+                    "none".to_string()
+                } else {
+                    names.join(", ")
+                }
+            ),
+        )
+    })
 }

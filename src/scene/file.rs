@@ -27,6 +27,44 @@ pub struct SceneFile {
     pub radiosity: Option<RadiosityFile>,
     /// Present: a participating medium fills the scene (or a box of it).
     pub medium: Option<MediumFile>,
+    #[serde(default)]
+    pub environments: BTreeMap<String, EnvironmentFile>,
+}
+
+/// `[environments.NAME]`: an environment map, from an image, six faces, a procedural
+/// environment, or a capture of the scene itself.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnvironmentFile {
+    /// One image (PNG sRGB, PFM or EXR linear): a latitude-longitude map, a sphere
+    /// map, or a cube map's horizontal cross.
+    pub image: Option<String>,
+    /// Six images, one per cube face.
+    pub faces: Option<CubeFacesFile>,
+    pub procedural: Option<crate::texture::environment::sky::ProceduralEnvironment>,
+    /// The world centre a capture renders the six faces from.
+    pub capture: Option<Vec3File>,
+    /// Objects (by name) a capture leaves out: the reflector itself, at least.
+    #[serde(default)]
+    pub hide: Vec<String>,
+    pub layout: Option<crate::texture::environment::Layout>,
+    /// Procedural and capture: a cube face's side, a sphere map's side or a
+    /// latitude-longitude map's height, in texels.
+    pub resolution: Option<u32>,
+    #[serde(default)]
+    pub filter: crate::texture::Filter,
+}
+
+/// The six faces of a cube map, each a square image of one size.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CubeFacesFile {
+    pub px: String,
+    pub nx: String,
+    pub py: String,
+    pub ny: String,
+    pub pz: String,
+    pub nz: String,
 }
 
 /// `[medium]`: a homogeneous participating medium and how its light is computed.
@@ -228,6 +266,8 @@ pub struct RenderFile {
     /// Pixel rows per band of the frame; 0 chooses them from a memory budget.
     #[serde(default)]
     pub band_rows: u32,
+    /// An environment shown where no surface is seen (instead of `background`).
+    pub backdrop: Option<String>,
 }
 
 impl Default for RenderFile {
@@ -238,6 +278,7 @@ impl Default for RenderFile {
             supersample: one_sample(),
             background: [0.0; 3],
             band_rows: 0,
+            backdrop: None,
         }
     }
 }
@@ -277,6 +318,17 @@ pub struct MaterialFile {
     /// Where texture coordinates come from: a two-part mapping, or (absent) the
     /// mesh's own coordinates.
     pub mapping: Option<MappingFile>,
+    /// Reflection coefficient k_r of the environment seen in the mirror direction.
+    #[serde(default)]
+    pub mirror: Vec3File,
+    /// Index of refraction: the surface reflects by Fresnel's weight and (with a
+    /// transmittance) refracts.
+    pub ior: Option<f64>,
+    /// What the refracted environment is multiplied by.
+    #[serde(default)]
+    pub transmittance: Vec3File,
+    /// The environment map the mirror and refracted directions look up.
+    pub environment: Option<String>,
 }
 
 /// `[textures.NAME]`: an image file or a procedural pattern, and how it is sampled.

@@ -1,5 +1,6 @@
 //! Materials from the scene file and from MTL files.
 
+use super::build::named;
 use super::file::MaterialFile;
 use super::validate::colour;
 use super::{Bump, Material, textures};
@@ -12,29 +13,14 @@ pub fn from_file(
     name: &str,
     m: &MaterialFile,
     textures: &HashMap<String, usize>,
+    environments: &HashMap<String, usize>,
 ) -> Result<Material> {
     let what = |key: &str| format!("materials.{name}.{key}");
     let texture = |key: &str, given: &Option<String>| -> Result<Option<usize>> {
-        let Some(t) = given else { return Ok(None) };
-        match textures.get(t) {
-            Some(&k) => Ok(Some(k)),
-            None => {
-                let mut known: Vec<&str> = textures.keys().map(String::as_str).collect();
-                known.sort();
-                Err(Error::invalid(
-                    what(key),
-                    format!(
-                        "{}: unknown texture `{t}` (known: {})",
-                        what(key),
-                        if known.is_empty() {
-                            "none".to_string()
-                        } else {
-                            known.join(", ")
-                        }
-                    ),
-                ))
-            }
-        }
+        given
+            .as_ref()
+            .map(|t| named(textures, t, &what(key), "texture"))
+            .transpose()
     };
     let bump = match (texture("bump_texture", &m.bump_texture)?, m.bump_height) {
         (Some(texture), height) => {
@@ -71,7 +57,44 @@ pub fn from_file(
         bump,
         mapping,
         interpolation: m.interpolation,
+        mirror: colour(&what("mirror"), m.mirror)?,
+        ior: m.ior,
+        transmittance: colour(&what("transmittance"), m.transmittance)?,
+        environment: m
+            .environment
+            .as_ref()
+            .map(|e| named(environments, e, &what("environment"), "environment"))
+            .transpose()?,
     };
+    if let Some(ior) = m.ior {
+        ensure_valid!(
+            ior.is_finite() && ior > 0.0,
+            what("ior"),
+            "{} must be a positive number (1.0 for vacuum, 1.33 water, 1.5 glass), got {ior}",
+            what("ior")
+        );
+    }
+    let shows_environment = material.mirror.max_element() > 0.0
+        || material.transmittance.max_element() > 0.0
+        || material.ior.is_some();
+    ensure_valid!(
+        !shows_environment || material.environment.is_some(),
+        what("environment"),
+        "{}: mirror, ior and transmittance look up an environment map; name one",
+        what("environment")
+    );
+    ensure_valid!(
+        shows_environment || material.environment.is_none(),
+        what("environment"),
+        "{}: the environment is seen through mirror, or ior with transmittance; give one",
+        what("environment")
+    );
+    ensure_valid!(
+        material.transmittance.max_element() == 0.0 || material.ior.is_some(),
+        what("transmittance"),
+        "{}: refraction needs the material's index of refraction, `ior`",
+        what("transmittance")
+    );
     ensure_valid!(
         m.exponent.is_finite() && m.exponent >= 0.0,
         what("exponent"),
@@ -114,6 +137,15 @@ fn check_energy(m: &Material) -> Result<()> {
             "material {}: diffuse + specular reflectance exceeds 1 ({total})",
             m.name
         )));
+    }
+    for (key, part) in [("mirror", m.mirror), ("transmittance", m.transmittance)] {
+        let total = m.diffuse + m.specular + part;
+        if total.max_element() > 1.0 {
+            return Err(Error::Scene(format!(
+                "material {}: diffuse + specular + {key} exceeds 1 ({total})",
+                m.name
+            )));
+        }
     }
     Ok(())
 }

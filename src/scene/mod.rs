@@ -6,6 +6,7 @@
 //! polygons by these ids.
 
 mod build;
+mod environments;
 pub mod file;
 pub mod lights;
 mod materials;
@@ -26,6 +27,7 @@ pub use lights::{
     SpotLight,
 };
 
+use crate::texture::environment::EnvironmentMap;
 use crate::texture::mapping::Mapping;
 use crate::texture::{Interpolation, Texture};
 use glam::{DMat4, DVec2, DVec3, Vec3};
@@ -65,6 +67,15 @@ pub struct Material {
     /// A two-part mapping giving the texture coordinates (else the mesh's own).
     pub mapping: Option<Mapping>,
     pub interpolation: Interpolation,
+    /// Reflection coefficient k_r of the environment seen in the mirror direction
+    /// (Blinn & Newell); with `ior`, a tint of Fresnel's reflection.
+    pub mirror: Vec3,
+    /// Index of refraction of the material (the outside is vacuum, 1).
+    pub ior: Option<f64>,
+    /// What the environment seen in the refracted direction is multiplied by.
+    pub transmittance: Vec3,
+    /// Index into `Scene::environments` of the map reflections and refractions read.
+    pub environment: Option<usize>,
 }
 
 /// A bump map: a texture read as a height, and the height of a value of 1.
@@ -77,6 +88,11 @@ pub struct Bump {
 impl Material {
     pub fn is_emitter(&self) -> bool {
         self.emission.max_element() > 0.0
+    }
+
+    /// Whether it shows an environment (reflected or refracted).
+    pub fn is_environment_mapped(&self) -> bool {
+        self.environment.is_some()
     }
 
     pub fn is_textured(&self) -> bool {
@@ -184,8 +200,38 @@ pub struct Scene {
     pub polygons: Vec<Polygon>,
     pub lights: Vec<Light>,
     pub textures: Vec<Arc<Texture>>,
+    /// Environment maps, loaded or to be captured by the renderer.
+    pub environments: Vec<Environment>,
     /// Things the user should know that do not stop the render (dropped faces…).
     pub warnings: Vec<String>,
+}
+
+/// A named environment map of the scene.
+#[derive(Clone, Debug)]
+pub struct Environment {
+    pub name: String,
+    pub source: EnvironmentSource,
+}
+
+#[derive(Clone, Debug)]
+pub enum EnvironmentSource {
+    /// Loaded or generated with the scene.
+    Map(Arc<EnvironmentMap>),
+    /// Six faces the renderer makes of the scene itself (Greene's "rendered by any
+    /// ordinary renderer").
+    Capture(Capture),
+}
+
+/// A cube map to render from a point of the scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Capture {
+    /// The world centre the faces are rendered from.
+    pub at: DVec3,
+    /// Texels per face side.
+    pub resolution: u32,
+    /// Indices into `Scene::objects` left out of the faces.
+    pub hide: Vec<usize>,
+    pub filter: crate::settings::Filter,
 }
 
 impl Scene {

@@ -4,7 +4,9 @@
 //! into linear radiance, with textures and bump maps (`textured`).
 
 pub use crate::geometry::lambert_contour;
+pub mod environment_mapping;
 pub mod light_model;
+pub mod optics;
 mod pass;
 pub mod sphere_form_factor;
 mod textured;

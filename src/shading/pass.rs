@@ -18,14 +18,17 @@
 //! post-pass (`post_pass`) darkens each light's contribution where its map finds
 //! shadow instead: weight v + (1 − v) × `POST_PASS_SHADE`, highlights included.
 
+use super::environment_mapping::{EnvironmentSample, backdrop};
 use super::light_model::{SurfacePoint, reflected};
 use super::textured::{polygon_tangents, textured_point};
 use crate::geometry::lambert_contour::projected_solid_angle;
 use crate::geometry::polygon::centroid;
 use crate::raster::{LightVisibility, View, Visibility, VisiblePart, VisibleSurface};
-use crate::scene::{Light, Polygon, Scene, ShadingMode, Vertex};
+use crate::scene::{EnvironmentSource, Light, Polygon, Scene, ShadingMode, Vertex};
+use crate::texture::environment::EnvironmentMap;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
+use std::sync::Arc;
 
 /// In Williams's post-pass, what a shadowed pixel keeps of a light's radiance.
 pub const POST_PASS_SHADE: f32 = 0.25;
@@ -39,6 +42,8 @@ pub struct FrameShading<'a> {
     /// Per flat-shaded polygon, its radiance from each light.
     flat: Vec<Option<Vec<Vec3>>>,
     tangents: Vec<Option<Vec<[DVec3; 2]>>>,
+    /// Per scene environment, its map (`None`: a capture nobody has made).
+    environments: Vec<Option<Arc<EnvironmentMap>>>,
 }
 
 impl<'a> FrameShading<'a> {
@@ -58,13 +63,78 @@ impl<'a> FrameShading<'a> {
                 })
             })
             .collect();
+        let environments = scene
+            .environments
+            .iter()
+            .map(|e| match &e.source {
+                EnvironmentSource::Map(map) => Some(map.clone()),
+                EnvironmentSource::Capture(_) => None,
+            })
+            .collect();
         FrameShading {
             scene,
             view,
             direct,
             flat,
             tangents: polygon_tangents(scene),
+            environments,
         }
+    }
+
+    /// The maps of the scene's environments, captures included (`None`: that
+    /// environment is not shown, as inside a capture itself).
+    pub fn with_environments(mut self, maps: Vec<Option<Arc<EnvironmentMap>>>) -> Self {
+        self.environments = maps;
+        self
+    }
+
+    /// The radiance where no surface is seen at sample `k`: the backdrop environment,
+    /// or the background colour.
+    pub fn background(&self, band: &VisibleSurface, k: usize) -> Vec3 {
+        match self
+            .scene
+            .render
+            .backdrop
+            .and_then(|e| self.environments[e].as_ref())
+        {
+            Some(map) => backdrop(map, self.view, band, k),
+            None => self.scene.render.background,
+        }
+    }
+
+    /// The radiance the environment adds at sample `k` (reflection and refraction
+    /// mapping; zero for materials without an environment).
+    pub fn environment(&self, band: &VisibleSurface, k: usize) -> Vec3 {
+        let scene = self.scene;
+        let s = &band.samples[k];
+        let id = s.polygon as usize;
+        let material = scene.material_of(id);
+        let Some(map) = material
+            .environment
+            .and_then(|e| self.environments[e].as_ref())
+        else {
+            return Vec3::ZERO;
+        };
+        let polygon = &scene.polygons[id];
+        let flat = scene.shading_of(id) == ShadingMode::Flat;
+        let normal = if flat {
+            polygon.normal
+        } else if material.bump.is_some() {
+            textured_point(scene, self.view.eye, band, k, &self.tangents).1
+        } else {
+            s.normal.as_dvec3()
+        };
+        EnvironmentSample {
+            view: self.view,
+            band,
+            k,
+            polygon,
+            material,
+            normal,
+            flat,
+            front: self.front(band, k),
+        }
+        .radiance(map)
     }
 
     /// The radiance of every sample of `band`: emission and every light this pass adds.
@@ -83,7 +153,7 @@ impl<'a> FrameShading<'a> {
             .map(|k| {
                 let s = &band.samples[k];
                 if s.is_empty() {
-                    return scene.render.background;
+                    return self.background(band, k);
                 }
                 let material = scene.material_of(s.polygon as usize);
                 let emitted = if self.front(band, k) {
@@ -91,7 +161,7 @@ impl<'a> FrameShading<'a> {
                 } else {
                     Vec3::ZERO
                 };
-                emitted + self.lit(band, k, visibility, gouraud)
+                emitted + self.lit(band, k, visibility, gouraud) + self.environment(band, k)
             })
             .collect()
     }

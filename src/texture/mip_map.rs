@@ -73,20 +73,25 @@ impl Pyramid {
 
     /// Bilinear lookups in levels ⌊λ⌋ and ⌊λ⌋ + 1, blended linearly by the fraction.
     pub fn trilinear(&self, uv: DVec2, lambda: f64, wrap: Wrap) -> Vec3 {
+        self.trilinear_wrapped(uv, lambda, [wrap, wrap])
+    }
+
+    /// `trilinear` with a wrap mode per axis (columns, rows).
+    pub fn trilinear_wrapped(&self, uv: DVec2, lambda: f64, wrap: [Wrap; 2]) -> Vec3 {
         let l0 = (lambda.floor() as usize).min(self.levels.len() - 1);
         let l1 = (l0 + 1).min(self.levels.len() - 1);
         let f = (lambda - l0 as f64).clamp(0.0, 1.0) as f32;
-        let a = self.levels[l0].bilinear(uv, wrap);
+        let a = self.levels[l0].bilinear_wrapped(uv, wrap);
         if f == 0.0 || l1 == l0 {
             return a;
         }
-        a.lerp(self.levels[l1].bilinear(uv, wrap), f)
+        a.lerp(self.levels[l1].bilinear_wrapped(uv, wrap), f)
     }
 }
 
 /// The next level: each texel the mean of a 2 × 2 block (or of a pair, when one side
 /// is already 1).
-fn reduce(level: &Texels) -> Texels {
+pub(crate) fn reduce(level: &Texels) -> Texels {
     let (w, h) = ((level.width / 2).max(1), (level.height / 2).max(1));
     let (sx, sy) = (level.width / w, level.height / h);
     let weight = 1.0 / (sx * sy) as f32;
@@ -112,7 +117,7 @@ fn reduce(level: &Texels) -> Texels {
 
 /// Bilinear resampling to `width × height`, texel centres mapped onto texel centres'
 /// positions in (u, v) (clamped at the borders).
-fn resample(image: &Texels, width: u32, height: u32) -> Texels {
+pub(crate) fn resample(image: &Texels, width: u32, height: u32) -> Texels {
     Texels::generate(width, height, |uv| image.bilinear(uv, Wrap::Clamp))
 }
 

@@ -9,6 +9,7 @@
 //! is one, else from the texels by central differences.
 
 pub mod bump;
+pub mod environment;
 pub mod mapping;
 pub mod mip_map;
 pub mod procedural;

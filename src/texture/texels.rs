@@ -99,7 +99,13 @@ impl Texels {
 
     /// Texel (i, j), wrapped.
     pub fn at(&self, i: i64, j: i64, wrap: Wrap) -> Vec3 {
-        let (i, j) = (wrap.index(i, self.width), wrap.index(j, self.height));
+        self.at_wrapped(i, j, [wrap, wrap])
+    }
+
+    /// Texel (i, j), wrapped along the columns by `wrap[0]`, along the rows by
+    /// `wrap[1]` (a latitude-longitude map repeats in longitude, clamps at the poles).
+    pub fn at_wrapped(&self, i: i64, j: i64, wrap: [Wrap; 2]) -> Vec3 {
+        let (i, j) = (wrap[0].index(i, self.width), wrap[1].index(j, self.height));
         self.texels[j * self.width as usize + i]
     }
 
@@ -117,14 +123,21 @@ impl Texels {
 
     /// Bilinear interpolation between the four texel centres around `uv`.
     pub fn bilinear(&self, uv: DVec2, wrap: Wrap) -> Vec3 {
+        self.bilinear_wrapped(uv, [wrap, wrap])
+    }
+
+    /// `bilinear` with a wrap mode per axis (columns, rows).
+    pub fn bilinear_wrapped(&self, uv: DVec2, wrap: [Wrap; 2]) -> Vec3 {
         let t = self.texel_space(uv) - 0.5;
         let (i, j) = (t.x.floor(), t.y.floor());
         let (fx, fy) = ((t.x - i) as f32, (t.y - j) as f32);
         let (i, j) = (i as i64, j as i64);
-        let top = self.at(i, j, wrap).lerp(self.at(i + 1, j, wrap), fx);
+        let top = self
+            .at_wrapped(i, j, wrap)
+            .lerp(self.at_wrapped(i + 1, j, wrap), fx);
         let bottom = self
-            .at(i, j + 1, wrap)
-            .lerp(self.at(i + 1, j + 1, wrap), fx);
+            .at_wrapped(i, j + 1, wrap)
+            .lerp(self.at_wrapped(i + 1, j + 1, wrap), fx);
         top.lerp(bottom, fy)
     }
 

@@ -1,0 +1,90 @@
+//! Environment maps made by rendering: Greene's cube map "rendered by any ordinary
+//! renderer", here lumiere's own. Six square frames with 90° fields of view from the
+//! capture point, along ±x, ±y, ±z with the cube map's face cameras
+//! (`texture::environment::cube_map`), of the scene without the hidden objects (the
+//! reflector itself, which an environment map cannot show: an object does not
+//! reflect itself).
+//!
+//! Inside a capture, captured environments are not shown (a mirror shows its local
+//! shading only), so captures never recurse; loaded and procedural environments are.
+//! A hidden polygon light is hidden with its light.
+
+use super::renderer::Renderer;
+use crate::Result;
+use crate::scene::{Camera, Light, Scene};
+use crate::texture::Texels;
+use crate::texture::environment::{EnvironmentMap, cube_map};
+use glam::DVec3;
+
+/// The scene as the capture sees it: the hidden objects' polygons (and their
+/// lights) left out, polygon ids renumbered.
+pub fn without_objects(scene: &Scene, hidden: &[usize]) -> Scene {
+    let mut renumbered = vec![None; scene.polygons.len()];
+    let mut kept = Vec::with_capacity(scene.polygons.len());
+    for (id, p) in scene.polygons.iter().enumerate() {
+        if !hidden.contains(&p.object) {
+            renumbered[id] = Some(kept.len());
+            kept.push(p.clone());
+        }
+    }
+    let lights = scene
+        .lights
+        .iter()
+        .filter_map(|light| match light {
+            Light::Polygon(l) => renumbered[l.polygon].map(|polygon| {
+                let mut l = l.clone();
+                l.polygon = polygon;
+                Light::Polygon(l)
+            }),
+            other => Some(other.clone()),
+        })
+        .collect();
+    Scene {
+        polygons: kept,
+        lights,
+        warnings: Vec::new(),
+        ..scene.clone()
+    }
+}
+
+/// The cube face cameras at `at`, `size` texels a side, in face storage order.
+pub fn face_cameras(at: DVec3, size: u32, near: f64) -> Vec<Camera> {
+    (0..6)
+        .map(|face| {
+            let [forward, up, _] = cube_map::face_frame(face);
+            Camera {
+                eye: at,
+                look_at: at + forward,
+                up,
+                fov_y: 90.0,
+                width: size,
+                height: size,
+                near,
+            }
+        })
+        .collect()
+}
+
+/// The cube map of `scene` seen from `at`: six frames rendered by a renderer that
+/// captures nothing itself.
+pub fn capture_cube(
+    scene: &Scene,
+    at: DVec3,
+    size: u32,
+    hidden: &[usize],
+    filter: crate::settings::Filter,
+) -> Result<EnvironmentMap> {
+    let seen = without_objects(scene, hidden);
+    let mut renderer = Renderer::without_captures(seen);
+    let mut faces = Vec::with_capacity(6);
+    for camera in face_cameras(at, size, scene.camera.near) {
+        renderer.set_camera(camera);
+        let image = renderer.render()?;
+        faces.push(Texels {
+            width: image.width,
+            height: image.height,
+            texels: image.pixels,
+        });
+    }
+    Ok(EnvironmentMap::cube(faces, filter))
+}
