@@ -21,6 +21,7 @@ macro_rules! out {
 mod bench;
 mod bench_radiosity;
 mod compare;
+mod envmap;
 mod form_factors;
 mod list;
 mod radiosity;
@@ -48,6 +49,7 @@ enum Command {
     List(list::Args),
     Render(render::Args),
     Compare(compare::Args),
+    Envmap(envmap::Args),
     Bench(bench::Args),
     ShadowPolygons(shadow_polygons::Args),
     FormFactors(form_factors::Args),
@@ -79,6 +81,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::List(a) => list::run(a),
         Command::Render(a) => render::run(a),
         Command::Compare(a) => compare::run(a),
+        Command::Envmap(a) => envmap::run(a),
         Command::Bench(a) => bench::run(a),
         Command::ShadowPolygons(a) => shadow_polygons::run(a),
         Command::FormFactors(a) => form_factors::run(a),

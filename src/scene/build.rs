@@ -169,7 +169,10 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
     {
         if let super::EnvironmentSource::Capture(capture) = &mut environment.source {
             for object in hide {
-                let Some(index) = builder.objects.iter().position(|o| &o.name == object) else {
+                let named: Vec<usize> = (0..builder.objects.len())
+                    .filter(|&o| &builder.objects[o].name == object)
+                    .collect();
+                if named.is_empty() {
                     let mut known: Vec<&str> =
                         builder.objects.iter().map(|o| o.name.as_str()).collect();
                     known.sort();
@@ -182,8 +185,8 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
                             known.join(", ")
                         ),
                     ));
-                };
-                capture.hide.push(index);
+                }
+                capture.hide.extend(named);
             }
         }
     }

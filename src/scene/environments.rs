@@ -150,23 +150,9 @@ pub fn load(
             ));
         };
         let t = read_image(path, &what("image"), resources)?;
-        let map = match layout {
-            Layout::Cube => EnvironmentMap::from_cross(&t, e.filter).map_err(|m| {
-                Error::invalid(what("image"), format!("{}: {path}: {m}", what("image")))
-            })?,
-            Layout::Sphere => {
-                ensure_valid!(
-                    t.width == t.height,
-                    what("image"),
-                    "{}: a sphere map must be square, {path} is {}x{}",
-                    what("image"),
-                    t.width,
-                    t.height
-                );
-                EnvironmentMap::flat(layout, t, e.filter)
-            }
-            Layout::LatLong => EnvironmentMap::flat(layout, t, e.filter),
-        };
+        let map = EnvironmentMap::from_image(layout, t, e.filter).map_err(|m| {
+            Error::invalid(what("image"), format!("{}: {path}: {m}", what("image")))
+        })?;
         EnvironmentSource::Map(Arc::new(map))
     };
     Ok((

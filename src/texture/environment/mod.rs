@@ -119,6 +119,23 @@ impl EnvironmentMap {
         Ok(EnvironmentMap::cube(faces, filter))
     }
 
+    /// A map of `layout` from one image: a latitude-longitude map, a (square) sphere
+    /// map or a cube map's horizontal cross; `Err` with what is wrong with its shape.
+    pub fn from_image(
+        layout: Layout,
+        texels: Texels,
+        filter: Filter,
+    ) -> Result<EnvironmentMap, String> {
+        match layout {
+            Layout::Cube => EnvironmentMap::from_cross(&texels, filter),
+            Layout::Sphere if texels.width != texels.height => Err(format!(
+                "a sphere map must be square, got {}x{}",
+                texels.width, texels.height
+            )),
+            _ => Ok(EnvironmentMap::flat(layout, texels, filter)),
+        }
+    }
+
     /// A map of `layout` whose texels are `f` averaged over 2 × 2 points of each
     /// texel. `size`: the image's height (a latitude-longitude map is 2·size wide),
     /// the sphere map's side, or a cube face's side.
