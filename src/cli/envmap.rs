@@ -3,12 +3,13 @@
 //! converted between layouts.
 
 use anyhow::{Context, Result, bail};
+use lumiere::load_scene;
 use lumiere::output::{self, Image};
 use lumiere::render::capture::capture_cube;
+use lumiere::scene::{Scene, objects_named};
 use lumiere::settings::Filter;
 use lumiere::texture::Texels;
 use lumiere::texture::environment::{EnvironmentMap, Layout};
-use lumiere::{load_scene, scene::Scene};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -141,9 +142,7 @@ fn parse_point(text: &str) -> Result<glam::DVec3> {
 fn hidden_objects(scene: &Scene, names: &[String]) -> Result<Vec<usize>> {
     let mut hidden = Vec::new();
     for name in names {
-        let found: Vec<usize> = (0..scene.objects.len())
-            .filter(|&o| &scene.objects[o].name == name)
-            .collect();
+        let found = objects_named(&scene.objects, name);
         if found.is_empty() {
             let mut known: Vec<&str> = scene.objects.iter().map(|o| o.name.as_str()).collect();
             known.sort();

@@ -169,9 +169,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
     {
         if let super::EnvironmentSource::Capture(capture) = &mut environment.source {
             for object in hide {
-                let named: Vec<usize> = (0..builder.objects.len())
-                    .filter(|&o| &builder.objects[o].name == object)
-                    .collect();
+                let named = super::objects_named(&builder.objects, object);
                 if named.is_empty() {
                     let mut known: Vec<&str> =
                         builder.objects.iter().map(|o| o.name.as_str()).collect();

@@ -206,6 +206,19 @@ pub struct Scene {
     pub warnings: Vec<String>,
 }
 
+/// The indices of the objects a scene file's `name` made: that object, or the parts
+/// of an OBJ file it loaded (named `name/part`).
+pub fn objects_named(objects: &[Object], name: &str) -> Vec<usize> {
+    (0..objects.len())
+        .filter(|&o| {
+            let n = &objects[o].name;
+            n == name
+                || n.strip_prefix(name)
+                    .is_some_and(|rest| rest.starts_with('/'))
+        })
+        .collect()
+}
+
 /// A named environment map of the scene.
 #[derive(Clone, Debug)]
 pub struct Environment {

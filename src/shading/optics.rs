@@ -23,8 +23,12 @@ pub fn refract(incident: DVec3, n: DVec3, eta: f64) -> Option<DVec3> {
 /// Schlick's approximation to the Fresnel reflectance of unpolarised light between
 /// indices η₁ (incident side) and η₂: F₀ + (1 − F₀)(1 − cos θ)⁵ with
 /// F₀ = ((η₁ − η₂)/(η₁ + η₂))², θ the angle on the less dense side (the transmitted
-/// one when leaving a denser medium); 1 beyond the critical angle.
+/// one when leaving a denser medium); 1 beyond the critical angle. Equal indices are
+/// no interface at all: 0 (where the formula would still give (1 − cos θ)⁵).
 pub fn schlick(cos_incident: f64, eta1: f64, eta2: f64) -> f64 {
+    if eta1 == eta2 {
+        return 0.0;
+    }
     let f0 = ((eta1 - eta2) / (eta1 + eta2)).powi(2);
     let cos = if eta1 > eta2 {
         let sin2 = (eta1 / eta2).powi(2) * (1.0 - cos_incident * cos_incident);
