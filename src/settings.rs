@@ -27,6 +27,9 @@ pub struct RenderSettings {
     pub background: glam::Vec3,
     /// An environment (index into `Scene::environments`) shown there instead.
     pub backdrop: Option<usize>,
+    /// Whether environments are looked up at all (off: mirrors show their local
+    /// shading only, the backdrop is the background colour; for comparisons).
+    pub environments: bool,
     /// Pixel rows per band of the frame (0: chosen from a memory budget). The image
     /// does not depend on it; memory grows with it.
     pub band_rows: u32,

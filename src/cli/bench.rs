@@ -34,6 +34,10 @@ pub struct Args {
     /// e.g. `shadows.light_points=16`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     sets: Vec<String>,
+    /// Also time each scene with environment lookups off (`render.environments =
+    /// false`): what reflection and refraction mapping add to the plain render.
+    #[arg(long)]
+    environments: bool,
     /// Runs per measurement; the median is reported.
     #[arg(long, default_value_t = 15)]
     runs: usize,
@@ -122,6 +126,12 @@ fn variants(args: &Args, scene_name: &str) -> Result<Vec<(String, Vec<String>)>>
     }
     if variants.is_empty() {
         variants.push(("(scene's)".to_string(), Vec::new()));
+    }
+    if args.environments {
+        variants.push((
+            "no environment lookups".to_string(),
+            vec!["render.environments=false".to_string()],
+        ));
     }
     Ok(variants)
 }

@@ -93,6 +93,7 @@ impl Renderer {
         let mut maps = Vec::with_capacity(self.scene.environments.len());
         for e in &self.scene.environments {
             maps.push(match &e.source {
+                _ if !self.scene.render.environments => None,
                 EnvironmentSource::Map(map) => Some(map.clone()),
                 EnvironmentSource::Capture(c) if self.captures => {
                     let map = capture_cube(&self.scene, c.at, c.resolution, &c.hide, c.filter)?;

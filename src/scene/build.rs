@@ -42,6 +42,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         background: validate::colour("render.background", file.render.background)?,
         band_rows: file.render.band_rows,
         backdrop: None,
+        environments: file.render.environments,
     };
     ensure_valid!(
         file.render.exposure.is_finite() && file.render.exposure > 0.0,

@@ -268,6 +268,9 @@ pub struct RenderFile {
     pub band_rows: u32,
     /// An environment shown where no surface is seen (instead of `background`).
     pub backdrop: Option<String>,
+    /// Off: no environment is looked up (mirrors show their local shading only).
+    #[serde(default = "yes")]
+    pub environments: bool,
 }
 
 impl Default for RenderFile {
@@ -279,12 +282,16 @@ impl Default for RenderFile {
             background: [0.0; 3],
             band_rows: 0,
             backdrop: None,
+            environments: true,
         }
     }
 }
 
 fn phong() -> ShadingMode {
     ShadingMode::Phong
+}
+fn yes() -> bool {
+    true
 }
 fn one() -> f64 {
     1.0

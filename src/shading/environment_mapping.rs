@@ -55,17 +55,29 @@ enum Ray {
     Refracted { eta: f64 },
 }
 
+/// The turned normal and the unit direction to the eye at the sample and at the
+/// next samples along x and y on the polygon's plane (`None` where it is seen
+/// edge-on): what every lookup's footprint is made of, found once per sample.
+struct Neighbourhood {
+    centre: Option<(DVec3, DVec3)>,
+    next: [Option<(DVec3, DVec3)>; 2],
+}
+
 impl EnvironmentSample<'_> {
     /// The radiance the environment adds at the sample: k_r T(R), or Fresnel's blend
     /// of T(R) and T(T) for a material with an index of refraction.
     pub fn radiance(&self, map: &EnvironmentMap) -> Vec3 {
         let s = &self.band.samples[self.k];
-        let turned = |n: DVec3| if self.front { n } else { -n };
-        let n = turned(self.normal);
+        let n = if self.front {
+            self.normal
+        } else {
+            -self.normal
+        };
         let to_eye = (self.view.eye - s.position).normalize();
+        let around = self.neighbourhood();
         let lookup = |ray: Ray| {
-            let d = self.direction(ray, n, to_eye);
-            map.lookup(d, self.footprint(ray))
+            let d = direction(ray, n, to_eye).normalize();
+            map.lookup(d, footprint(&around, ray))
         };
         let m = self.material;
         let Some(ior) = m.ior else {
@@ -87,22 +99,10 @@ impl EnvironmentSample<'_> {
         radiance
     }
 
-    /// The lookup direction at a point with turned normal `n`.
-    fn direction(&self, ray: Ray, n: DVec3, to_eye: DVec3) -> DVec3 {
-        let reflected = reflect(to_eye, n);
-        match ray {
-            Ray::Reflected => reflected,
-            Ray::Refracted { eta } => refract(-to_eye, n, eta).unwrap_or(reflected),
-        }
-    }
-
-    /// The offsets from the direction at the sample to the directions at the next
-    /// sample along x and along y, on the polygon's plane (zero where that plane is
-    /// seen edge-on).
-    fn footprint(&self, ray: Ray) -> [DVec3; 2] {
+    fn neighbourhood(&self) -> Neighbourhood {
         let s = &self.band.samples[self.k];
         let (x, y) = self.band.position_of(self.k);
-        let at = |px: f64, py: f64| -> Option<DVec3> {
+        let at = |px: f64, py: f64| -> Option<(DVec3, DVec3)> {
             let (origin, d) = self.view.ray_through(px, py);
             let across = d.dot(self.polygon.normal);
             if across.abs() < 1e-12 {
@@ -116,16 +116,35 @@ impl EnvironmentSample<'_> {
                 interpolate(self.polygon, point).0
             };
             let n = if self.front { normal } else { -normal };
-            let to_eye = (self.view.eye - point).normalize();
-            Some(self.direction(ray, n, to_eye).normalize())
+            Some((n, (self.view.eye - point).normalize()))
         };
         let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
-        let Some(centre) = at(cx, cy) else {
-            return [DVec3::ZERO; 2];
-        };
-        let step = |p: Option<DVec3>| p.map_or(DVec3::ZERO, |p| p - centre);
-        [step(at(cx + 1.0, cy)), step(at(cx, cy + 1.0))]
+        Neighbourhood {
+            centre: at(cx, cy),
+            next: [at(cx + 1.0, cy), at(cx, cy + 1.0)],
+        }
     }
+}
+
+/// The lookup direction at a point with turned normal `n`.
+fn direction(ray: Ray, n: DVec3, to_eye: DVec3) -> DVec3 {
+    let reflected = reflect(to_eye, n);
+    match ray {
+        Ray::Reflected => reflected,
+        Ray::Refracted { eta } => refract(-to_eye, n, eta).unwrap_or(reflected),
+    }
+}
+
+/// The offsets from the direction `ray` takes at the sample to those it takes at the
+/// next samples along x and y (zero where the plane is seen edge-on).
+fn footprint(around: &Neighbourhood, ray: Ray) -> [DVec3; 2] {
+    let along = |p: &Option<(DVec3, DVec3)>| p.map(|(n, v)| direction(ray, n, v).normalize());
+    let Some(centre) = along(&around.centre) else {
+        return [DVec3::ZERO; 2];
+    };
+    around
+        .next
+        .map(|p| along(&p).map_or(DVec3::ZERO, |d| d - centre))
 }
 
 /// The backdrop's radiance at sample `k` of `band`: the environment in the eye ray's

@@ -67,6 +67,7 @@ impl<'a> FrameShading<'a> {
             .environments
             .iter()
             .map(|e| match &e.source {
+                _ if !scene.render.environments => None,
                 EnvironmentSource::Map(map) => Some(map.clone()),
                 EnvironmentSource::Capture(_) => None,
             })

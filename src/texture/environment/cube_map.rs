@@ -32,6 +32,7 @@
 
 use super::super::mip_map::{reduce, resample};
 use super::super::texels::{Texels, Wrap};
+use crate::settings::Filter;
 use glam::{DVec2, DVec3, Vec3};
 
 /// The faces in their storage order.
@@ -158,21 +159,22 @@ impl BorderedFaces {
 
     fn bilinear(&self, face: usize, uv: DVec2) -> Vec3 {
         let n = self.n as f64;
-        // Continuous bordered-texel coordinates, minus the half texel to centres.
+        // Continuous bordered-texel coordinates, minus the half texel to centres:
+        // in [0.5, n + 0.5], so the four texels are inside the bordered face.
         let t = DVec2::new(
             uv.x.clamp(0.0, 1.0) * n + 0.5,
             (1.0 - uv.y.clamp(0.0, 1.0)) * n + 0.5,
         );
-        let (i, j) = (t.x.floor(), t.y.floor());
-        let (fx, fy) = ((t.x - i) as f32, (t.y - j) as f32);
-        let (i, j) = (i as i64, j as i64);
-        let f = &self.faces[face];
-        let top = f
-            .at(i, j, Wrap::Clamp)
-            .lerp(f.at(i + 1, j, Wrap::Clamp), fx);
-        let bottom = f
-            .at(i, j + 1, Wrap::Clamp)
-            .lerp(f.at(i + 1, j + 1, Wrap::Clamp), fx);
+        let (i, j) = (
+            (t.x.floor() as usize).min(self.n as usize),
+            (t.y.floor() as usize).min(self.n as usize),
+        );
+        let (fx, fy) = ((t.x - i as f64) as f32, (t.y - j as f64) as f32);
+        let side = self.n as usize + 2;
+        let texels = &self.faces[face].texels;
+        let at = |i: usize, j: usize| texels[j * side + i];
+        let top = at(i, j).lerp(at(i + 1, j), fx);
+        let bottom = at(i, j + 1).lerp(at(i + 1, j + 1), fx);
         top.lerp(bottom, fy)
     }
 }
@@ -228,34 +230,53 @@ impl CubeMap {
         self.base.bilinear(face, uv)
     }
 
-    /// The mip-map level λ for a lookup at `d` whose footprint reaches the directions
+    /// The mip-map level λ for a lookup at unit `d` whose footprint reaches the directions
     /// `d + footprint[0]` and `d + footprint[1]` (Blinn & Newell's corners mapped onto
     /// the face, here the pixel's neighbours): the longer side in level-0 texels,
     /// log₂. A corner behind the face's plane covers the whole face.
     pub fn level(&self, d: DVec3, footprint: [DVec3; 2]) -> f64 {
         let (face, uv) = face_uv(d);
-        let n = self.levels[0].n as f64;
-        let side = |offset: DVec3| {
-            let d = d.normalize() + offset;
-            uv_on_face(face, d).map_or(f64::INFINITY, |o| (o - uv).length() * n)
-        };
-        let texels = side(footprint[0]).max(side(footprint[1]));
-        if texels.is_nan() || texels <= 1.0 {
-            return 0.0;
-        }
-        texels.log2().min((self.levels.len() - 1) as f64)
+        self.level_on_face(face, uv, d, footprint)
     }
 
-    /// Bilinear in the level nearest λ.
-    pub fn mip_nearest(&self, d: DVec3, lambda: f64) -> Vec3 {
+    /// `level` for a direction already placed at (face, uv).
+    fn level_on_face(&self, face: usize, uv: DVec2, d: DVec3, footprint: [DVec3; 2]) -> f64 {
+        let n = self.levels[0].n as f64;
+        let side2 = |offset: DVec3| {
+            uv_on_face(face, d + offset).map_or(f64::INFINITY, |o| (o - uv).length_squared())
+        };
+        let texels2 = side2(footprint[0]).max(side2(footprint[1])) * n * n;
+        if texels2.is_nan() || texels2 <= 1.0 {
+            return 0.0;
+        }
+        (0.5 * texels2.log2()).min((self.levels.len() - 1) as f64)
+    }
+
+    /// The lookup `filter` makes at `d` with `footprint`, the face found once.
+    pub fn filtered(&self, d: DVec3, footprint: [DVec3; 2], filter: Filter) -> Vec3 {
         let (face, uv) = face_uv(d);
-        let k = (lambda.round() as usize).min(self.levels.len() - 1);
-        self.levels[k].bilinear(face, uv)
+        match filter {
+            Filter::Nearest => self.base.nearest(face, uv),
+            Filter::MipNearest | Filter::Trilinear => {
+                let lambda = self.level_on_face(face, uv, d, footprint);
+                if filter == Filter::MipNearest {
+                    let k = (lambda.round() as usize).min(self.levels.len() - 1);
+                    self.levels[k].bilinear(face, uv)
+                } else {
+                    self.trilinear_on_face(face, uv, lambda)
+                }
+            }
+            _ => self.base.bilinear(face, uv),
+        }
     }
 
     /// Bilinear in the two levels bracketing λ, blended (Williams 1983, per face).
     pub fn trilinear(&self, d: DVec3, lambda: f64) -> Vec3 {
         let (face, uv) = face_uv(d);
+        self.trilinear_on_face(face, uv, lambda)
+    }
+
+    fn trilinear_on_face(&self, face: usize, uv: DVec2, lambda: f64) -> Vec3 {
         let l0 = (lambda.floor() as usize).min(self.levels.len() - 1);
         let l1 = (l0 + 1).min(self.levels.len() - 1);
         let f = (lambda - l0 as f64).clamp(0.0, 1.0) as f32;

@@ -188,16 +188,12 @@ impl EnvironmentMap {
         }
     }
 
-    /// The filtered radiance in direction `d` (need not be unit), for a lookup whose
-    /// footprint reaches `d/|d| + footprint[0]` and `d/|d| + footprint[1]`.
+    /// The filtered radiance in the unit direction `d`, for a lookup whose footprint
+    /// reaches `d + footprint[0]` and `d + footprint[1]`.
     pub fn lookup(&self, d: DVec3, footprint: [DVec3; 2]) -> Vec3 {
+        debug_assert!((d.length_squared() - 1.0).abs() < 1e-6, "a unit direction");
         match &self.store {
-            Store::Cube(cube) => match self.filter {
-                Filter::Nearest => cube.nearest(d),
-                Filter::MipNearest => cube.mip_nearest(d, cube.level(d, footprint)),
-                Filter::Trilinear => cube.trilinear(d, cube.level(d, footprint)),
-                _ => cube.bilinear(d),
-            },
+            Store::Cube(cube) => cube.filtered(d, footprint, self.filter),
             Store::Flat {
                 layout,
                 texels,
@@ -226,7 +222,8 @@ impl EnvironmentMap {
         }
     }
 
-    /// The mip-map level λ a lookup reads (`None` for filters without levels).
+    /// The mip-map level λ a lookup at unit `d` reads (`None` for filters without
+    /// levels).
     pub fn level(&self, d: DVec3, footprint: [DVec3; 2]) -> Option<f64> {
         if !matches!(self.filter, Filter::MipNearest | Filter::Trilinear) {
             return None;
