@@ -1508,3 +1508,115 @@ fn medium_buffers() {
         "{ones} rays with one lit interval, {twos} with two"
     );
 }
+
+#[test]
+fn envmap_captures_a_scene_and_converts_between_layouts() {
+    let dir = workspace(&[]);
+    let run = lumiere(
+        &[
+            "envmap",
+            "reflection-mapping-parallax",
+            "--at",
+            "0,1,0",
+            "--hide",
+            "ball",
+            "--cube",
+            "--size",
+            "16",
+            "-o",
+            "room.png",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("cube map, 64x48"), "{}", run.stdout);
+    let cross = image::open(dir.path().join("room.png")).unwrap();
+    assert_eq!((cross.width(), cross.height()), (64, 48));
+    for (to, size) in [("--sphere", (16, 16)), ("--lat-long", (32, 16))] {
+        let run = lumiere(
+            &[
+                "envmap", "--from", "room.png", "--layout", "cube", to, "-o", "out.pfm",
+            ],
+            dir.path(),
+        );
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let out = lumiere::output::load(&dir.path().join("out.pfm")).unwrap();
+        assert_eq!((out.width, out.height), size);
+    }
+    // A scene naming the written cross renders with it.
+    let scene = format!(
+        "{}\n[environments.room]\nimage = \"room.png\"\nlayout = \"cube\"\n\
+         [materials.chrome]\nmirror = [0.9, 0.9, 0.9]\nenvironment = \"room\"\n",
+        scene(CAMERA, "")
+    )
+    .replace("material = \"grey\"", "material = \"chrome\"");
+    std::fs::write(dir.path().join("chrome.toml"), scene).unwrap();
+    let run = lumiere(&["render", "chrome.toml", "-o", "chrome.png"], dir.path());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+}
+
+#[test]
+fn envmap_refuses_bad_input_in_one_line() {
+    let dir = workspace(&[]);
+    let out = dir.path().join("out.png");
+    let wide = image::RgbImage::new(30, 20);
+    wide.save(dir.path().join("wide.png")).unwrap();
+    for (args, fragment) in [
+        (
+            vec!["envmap", "cornell-box", "--cube", "-o", "out.png"],
+            "a capture needs --at X,Y,Z",
+        ),
+        (
+            vec![
+                "envmap",
+                "cornell-box",
+                "--at",
+                "1,2",
+                "--cube",
+                "-o",
+                "out.png",
+            ],
+            "--at 1,2: expected three finite numbers",
+        ),
+        (
+            vec!["envmap", "cornell-box", "--at", "0,0,0", "-o", "out.png"],
+            "--cube, --sphere or --lat-long",
+        ),
+        (
+            vec![
+                "envmap",
+                "cornell-box",
+                "--at",
+                "0,0,0",
+                "--hide",
+                "nothing",
+                "--cube",
+                "-o",
+                "out.png",
+            ],
+            "--hide nothing: the scene has no object of that name",
+        ),
+        (
+            vec![
+                "envmap", "--from", "wide.png", "--layout", "sphere", "--cube", "-o", "out.png",
+            ],
+            "a sphere map must be square, got 30x20",
+        ),
+        (
+            vec![
+                "envmap", "--from", "wide.png", "--layout", "cube", "--sphere", "-o", "out.png",
+            ],
+            "a cross image must be 4:3",
+        ),
+        (
+            vec![
+                "envmap", "--from", "wide.png", "--layout", "lat-long", "--cube", "--size", "0",
+                "-o", "out.png",
+            ],
+            "--size must be between 1 and 4096",
+        ),
+    ] {
+        let run = lumiere(&args, dir.path());
+        assert_clear_error(&run, fragment, &out);
+    }
+}

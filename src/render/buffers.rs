@@ -10,6 +10,7 @@ use crate::radiosity::hemicube::{BACK, Hemicube};
 use crate::radiosity::receivers::Receivers;
 use crate::raster::{NO_POLYGON, Visibility, VisibleSurface};
 use crate::settings::ShadowMethod;
+use crate::shading::FrameShading;
 use crate::shadow::LightShadows;
 use crate::{Error, Result};
 use std::sync::Arc;
@@ -33,6 +34,7 @@ enum Kind {
     Visibility(usize),
     Counts(usize, ShadowMethod),
     MipLevel,
+    EnvironmentLevel,
     Radiosity,
     /// The lit intervals of each viewing ray for a light (light volumes).
     LitIntervals(usize),
@@ -56,6 +58,7 @@ impl Kind {
                 _ => format!("shadow-volume-counts-{l}"),
             },
             Kind::MipLevel => "mip-level".into(),
+            Kind::EnvironmentLevel => "environment-level".into(),
             Kind::Radiosity => "radiosity".into(),
             Kind::LitIntervals(l) => format!("lit-intervals-{l}"),
             Kind::Inscattered => "inscattered".into(),
@@ -88,6 +91,9 @@ impl Kind {
             },
             Kind::MipLevel => {
                 "mip-map level λ read per sample for its diffuse texture (-1: none)".into()
+            }
+            Kind::EnvironmentLevel => {
+                "mip-map level λ of the environment read in the mirror direction (-1: none)".into()
             }
             Kind::Radiosity => "radiosity B of the visible element (linear, flat)".into(),
             Kind::LitIntervals(l) => format!(
@@ -131,6 +137,9 @@ fn catalogue(
         .any(|t| t.mip_level([Default::default(); 2]).is_some())
     {
         kinds.push(Kind::MipLevel);
+    }
+    if scene.materials.iter().any(|m| m.environment.is_some()) {
+        kinds.push(Kind::EnvironmentLevel);
     }
     let mut fixed = Vec::new();
     for (l, s) in shadows.iter().enumerate() {
@@ -308,6 +317,7 @@ impl FrameBuffers {
         medium: &MediumBand,
         integrator: &Integrator,
         scene: &crate::scene::Scene,
+        shading: &FrameShading,
     ) {
         for (kind, data) in &mut self.kinds {
             let samples = band.samples.iter().enumerate();
@@ -342,6 +352,11 @@ impl FrameBuffers {
                                 visibility.fraction(l, k)
                             }),
                             Kind::MipLevel => data.push(mip_level(scene, band, k)),
+                            Kind::EnvironmentLevel => data.push(
+                                shading
+                                    .environment_level(band, k)
+                                    .map_or(-1.0, |l| l as f32),
+                            ),
                             Kind::Inscattered => data.extend(
                                 medium
                                     .inscattered

@@ -102,6 +102,7 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
             &medium_band,
             &integrator,
             scene,
+            &shading,
         );
         let pixels_of_band = Image {
             width: view.width,

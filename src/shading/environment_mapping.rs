@@ -99,6 +99,20 @@ impl EnvironmentSample<'_> {
         radiance
     }
 
+    /// The mip-map level λ the mirror-direction lookup reads (`None` for filters
+    /// without levels).
+    pub fn reflected_level(&self, map: &EnvironmentMap) -> Option<f64> {
+        let s = &self.band.samples[self.k];
+        let n = if self.front {
+            self.normal
+        } else {
+            -self.normal
+        };
+        let to_eye = (self.view.eye - s.position).normalize();
+        let d = direction(Ray::Reflected, n, to_eye).normalize();
+        map.level(d, footprint(&self.neighbourhood(), Ray::Reflected))
+    }
+
     fn neighbourhood(&self) -> Neighbourhood {
         let s = &self.band.samples[self.k];
         let (x, y) = self.band.position_of(self.k);

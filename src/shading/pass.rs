@@ -106,16 +106,32 @@ impl<'a> FrameShading<'a> {
     /// The radiance the environment adds at sample `k` (reflection and refraction
     /// mapping; zero for materials without an environment).
     pub fn environment(&self, band: &VisibleSurface, k: usize) -> Vec3 {
+        self.environment_sample(band, k)
+            .map_or(Vec3::ZERO, |(sample, map)| sample.radiance(map))
+    }
+
+    /// The mip-map level λ of the mirror-direction lookup at sample `k` (`None`
+    /// without an environment, or for filters without levels).
+    pub fn environment_level(&self, band: &VisibleSurface, k: usize) -> Option<f64> {
+        self.environment_sample(band, k)
+            .and_then(|(sample, map)| sample.reflected_level(map))
+    }
+
+    fn environment_sample<'b>(
+        &'b self,
+        band: &'b VisibleSurface,
+        k: usize,
+    ) -> Option<(EnvironmentSample<'b>, &'b EnvironmentMap)> {
         let scene = self.scene;
         let s = &band.samples[k];
+        if s.is_empty() {
+            return None;
+        }
         let id = s.polygon as usize;
         let material = scene.material_of(id);
-        let Some(map) = material
+        let map = material
             .environment
-            .and_then(|e| self.environments[e].as_ref())
-        else {
-            return Vec3::ZERO;
-        };
+            .and_then(|e| self.environments[e].as_ref())?;
         let polygon = &scene.polygons[id];
         let flat = scene.shading_of(id) == ShadingMode::Flat;
         let normal = if flat {
@@ -125,7 +141,7 @@ impl<'a> FrameShading<'a> {
         } else {
             s.normal.as_dvec3()
         };
-        EnvironmentSample {
+        let sample = EnvironmentSample {
             view: self.view,
             band,
             k,
@@ -134,8 +150,8 @@ impl<'a> FrameShading<'a> {
             normal,
             flat,
             front: self.front(band, k),
-        }
-        .radiance(map)
+        };
+        Some((sample, map.as_ref()))
     }
 
     /// The radiance of every sample of `band`: emission and every light this pass adds.
