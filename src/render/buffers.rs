@@ -316,9 +316,9 @@ impl FrameBuffers {
         counts: &[Option<Vec<i32>>],
         medium: &MediumBand,
         integrator: &Integrator,
-        scene: &crate::scene::Scene,
         shading: &FrameShading,
     ) {
+        let scene = shading.scene();
         for (kind, data) in &mut self.kinds {
             let samples = band.samples.iter().enumerate();
             match (kind, data) {

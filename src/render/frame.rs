@@ -101,7 +101,6 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
             &counts,
             &medium_band,
             &integrator,
-            scene,
             &shading,
         );
         let pixels_of_band = Image {

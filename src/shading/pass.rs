@@ -82,6 +82,11 @@ impl<'a> FrameShading<'a> {
         }
     }
 
+    /// The scene it shades.
+    pub fn scene(&self) -> &'a Scene {
+        self.scene
+    }
+
     /// The maps of the scene's environments, captures included (`None`: that
     /// environment is not shown, as inside a capture itself).
     pub fn with_environments(mut self, maps: Vec<Option<Arc<EnvironmentMap>>>) -> Self {
