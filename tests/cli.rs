@@ -1620,3 +1620,79 @@ fn envmap_refuses_bad_input_in_one_line() {
         assert_clear_error(&run, fragment, &out);
     }
 }
+
+#[test]
+fn numbers_are_refused_in_the_scene_files_words() {
+    let negative = scene(CAMERA, "").replace("width = 16", "width = -5");
+    render_error(
+        &[("s.toml", &negative)],
+        &["s.toml"],
+        "camera.width: invalid value: integer `-5`, expected a whole number from 0 to 4294967295",
+    );
+    render_error(
+        &[("s.toml", "[render]\nexposure = 1.0\n")],
+        &["s.toml"],
+        "the scene: missing the `[camera]` table",
+    );
+    let huge = scene(CAMERA, "").replace(
+        "intensity = [5.0, 5.0, 5.0]",
+        "intensity = [1e39, 1.0, 1.0]",
+    );
+    render_error(
+        &[("s.toml", &huge)],
+        &["s.toml"],
+        "intensity must be at most 3.4028235e38 (a 32-bit float), got [1e39, 1.0, 1.0]",
+    );
+    // A negative number on the command line is a value, not an unknown option.
+    let dir = workspace(&[]);
+    let run = lumiere(
+        &["render", "cornell-box", "--width", "-5", "-o", "out.png"],
+        dir.path(),
+    );
+    assert_ne!(run.code, 0);
+    assert!(
+        run.stderr.contains("invalid value '-5' for '--width"),
+        "{}",
+        run.stderr
+    );
+    assert!(!run.stderr.contains("-- -5"), "{}", run.stderr);
+    assert!(!dir.path().join("out.png").exists());
+}
+
+#[test]
+fn silent_results_are_warned_about() {
+    // Everything behind the camera.
+    let behind = scene(
+        "eye = [0.0, 1.0, 3.0]\nlook_at = [0.0, 1.0, 6.0]\nfov_y = 40.0",
+        "",
+    );
+    let dir = workspace(&[("s.toml", &behind)]);
+    let run = lumiere(&["render", "s.toml", "-o", "out.png"], dir.path());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("warning: no polygon lies in front of the camera"),
+        "{}",
+        run.stderr
+    );
+    // Radiance beyond a 32-bit float: a very bright light a hair above the floor.
+    let blinding = scene(CAMERA, "")
+        .replace("position = [0.0, 2.0, 2.0]", "position = [0.0, 0.05, 0.0]")
+        .replace(
+            "intensity = [5.0, 5.0, 5.0]",
+            "intensity = [3e38, 3e38, 3e38]",
+        );
+    let dir = workspace(&[("s.toml", &blinding)]);
+    let run = lumiere(&["render", "s.toml", "-o", "out.pfm"], dir.path());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("pixels have infinite or undefined radiance"),
+        "{}",
+        run.stderr
+    );
+    // A scene in view says nothing.
+    let fine = workspace(&[("s.toml", &scene(CAMERA, ""))]);
+    let run = lumiere(&["render", "s.toml", "-o", "out.png"], fine.path());
+    assert_eq!((run.code, run.stderr.as_str()), (0, ""));
+}

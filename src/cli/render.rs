@@ -12,6 +12,7 @@ use std::path::PathBuf;
 /// PNG is 8-bit sRGB after the scene's exposure; PFM and EXR are linear radiance
 /// (32-bit float).
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// A catalogue id (see `lumiere list`) or the path of a .toml scene file.
     scene: String,
@@ -126,6 +127,15 @@ pub fn run(args: Args) -> Result<()> {
     for warning in &scene.warnings {
         eprintln!("warning: {warning}");
     }
+    if !scene.polygons.is_empty() && {
+        let view = lumiere::raster::sample_view(scene);
+        lumiere::raster::screen_polygons(scene, &view).is_empty()
+    } {
+        eprintln!(
+            "warning: no polygon lies in front of the camera within its field of view (and beyond camera.near = {}): the image shows the background only",
+            scene.camera.near
+        );
+    }
     if scene.shadows.method == ShadowMethod::ShadowVolumes {
         for name in lumiere::shadow::shadow_volumes::open_objects(scene) {
             eprintln!(
@@ -143,7 +153,16 @@ pub fn run(args: Args) -> Result<()> {
         bail!("--frames shows radiosity shooting steps: the scene has no [radiosity] table");
     }
     match aov {
-        None => Ok(output::save(&renderer.render()?, &args.output, exposure)?),
+        None => {
+            let image = renderer.render()?;
+            let unbounded = image.pixels.iter().filter(|p| !p.is_finite()).count();
+            if unbounded > 0 {
+                eprintln!(
+                    "warning: {unbounded} pixels have infinite or undefined radiance (a point light on a surface?); PNG shows them white, PFM and EXR keep them"
+                );
+            }
+            Ok(output::save(&image, &args.output, exposure)?)
+        }
         Some("list") => {
             for info in available_buffers(&renderer)? {
                 outln!("{:<28} {}", info.name, info.description)?;

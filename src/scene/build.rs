@@ -32,7 +32,19 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
     let file: SceneFile =
         serde_path_to_error::deserialize(toml::Value::Table(table)).map_err(|e| {
             let key = e.path().to_string();
-            Error::invalid(&key, format!("{key}: {}", e.inner()))
+            let message = plain_serde_message(&e.inner().to_string());
+            if key == "." {
+                let table = message
+                    .strip_prefix("missing field `")
+                    .and_then(|rest| rest.strip_suffix('`'))
+                    .map(|name| format!("missing the `[{name}]` table"));
+                Error::invalid(
+                    "the scene",
+                    format!("the scene: {}", table.unwrap_or(message)),
+                )
+            } else {
+                Error::invalid(&key, format!("{key}: {message}"))
+            }
         })?;
     let camera = validate::camera(&file.camera)?;
     let render = RenderSettings {
@@ -720,4 +732,22 @@ pub(super) fn named(
             ),
         )
     })
+}
+
+/// A deserialiser's message in the scene file's words: its first line (the key is
+/// named already), Rust's type names spelled out.
+fn plain_serde_message(message: &str) -> String {
+    let first = message.lines().next().unwrap_or_default().trim();
+    [
+        (
+            "expected u32",
+            "expected a whole number from 0 to 4294967295",
+        ),
+        ("expected u64", "expected a whole number of at least 0"),
+        ("expected usize", "expected a whole number of at least 0"),
+        ("expected f64", "expected a number"),
+        ("expected a boolean", "expected true or false"),
+    ]
+    .iter()
+    .fold(first.to_string(), |m, (from, to)| m.replace(from, to))
 }

@@ -35,6 +35,13 @@ pub fn colour(what: &str, v: Vec3File) -> Result<glam::Vec3> {
         what,
         "{what} must not be negative, got {v:?}"
     );
+    // Radiance is kept in 32-bit floats: larger values would become infinite.
+    ensure_valid!(
+        c.as_vec3().is_finite(),
+        what,
+        "{what} must be at most {:e} (a 32-bit float), got {v:?}",
+        f32::MAX
+    );
     Ok(c.as_vec3())
 }
 
