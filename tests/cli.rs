@@ -204,6 +204,24 @@ fn missing_and_broken_obj_files() {
         &["s.toml"],
         "broken.obj",
     );
+    // Where tobj only says what is wrong, the line is found.
+    for (text, fragment) in [
+        (
+            "v 0 0 0\nv 1 0 0\nv 1 x 0\nf 1 2 3\n",
+            "at line 3: `v 1 x 0`",
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\n# ok\nf 1 2 4\n",
+            "at line 5: `f 1 2 4`",
+        ),
+        ("v 0 0 0\nvn 0 0 1\nvn 0 q 1\n", "at line 3: `vn 0 q 1`"),
+    ] {
+        render_error(
+            &[("s.toml", &broken), ("broken.obj", text)],
+            &["s.toml"],
+            fragment,
+        );
+    }
     let no_mtl = obj.replace("missing.obj", "m.obj");
     let m_obj = "mtllib nope.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n";
     render_error(

@@ -52,7 +52,10 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
         })
         .map_err(|e| Error::Model {
             path: path.to_path_buf(),
-            message: e.to_string(),
+            message: match first_bad_line(&String::from_utf8_lossy(&bytes), &e) {
+                Some((number, line)) => format!("{e} at line {number}: `{line}`"),
+                None => e.to_string(),
+            },
         })?;
     let materials = match (materials, mtl_error.into_inner()) {
         (Ok(m), _) => m,
@@ -196,4 +199,58 @@ fn short_colour(mtl: &[u8]) -> Option<Error> {
             ))
         })
     })
+}
+
+/// The first line (1-based, and its text) an OBJ parse error `error` can be blamed
+/// on: tobj reports what went wrong, not where.
+fn first_bad_line(text: &str, error: &tobj::LoadError) -> Option<(usize, String)> {
+    use tobj::LoadError as E;
+    let numbers = |rest: &str, least: usize, most: usize| {
+        let fields: Vec<&str> = rest.split_whitespace().collect();
+        (least..=most).contains(&fields.len()) && fields.iter().all(|f| f.parse::<f32>().is_ok())
+    };
+    // Vertex, texture-coordinate and normal counts so far, for face indices.
+    let mut counts = [0i64; 3];
+    for (index, line) in text.lines().enumerate() {
+        let line = line.trim();
+        let (keyword, rest) = line.split_once(char::is_whitespace).unwrap_or((line, ""));
+        let bad = match keyword {
+            "v" => {
+                counts[0] += 1;
+                matches!(error, E::PositionParseError) && !numbers(rest, 3, 4)
+            }
+            "vt" => {
+                counts[1] += 1;
+                matches!(error, E::TexcoordParseError) && !numbers(rest, 1, 3)
+            }
+            "vn" => {
+                counts[2] += 1;
+                matches!(error, E::NormalParseError) && !numbers(rest, 3, 3)
+            }
+            "f" => {
+                matches!(
+                    error,
+                    E::FaceParseError
+                        | E::FaceVertexOutOfBounds
+                        | E::FaceTexCoordOutOfBounds
+                        | E::FaceNormalOutOfBounds
+                ) && rest.split_whitespace().any(|corner| {
+                    corner.split('/').enumerate().any(|(k, i)| {
+                        if i.is_empty() && k > 0 {
+                            return false;
+                        }
+                        match i.parse::<i64>() {
+                            Ok(i) => i == 0 || i.unsigned_abs() > counts[k.min(2)] as u64,
+                            Err(_) => true,
+                        }
+                    })
+                })
+            }
+            _ => false,
+        };
+        if bad {
+            return Some((index + 1, line.to_string()));
+        }
+    }
+    None
 }
