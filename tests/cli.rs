@@ -1318,6 +1318,30 @@ fn counts_that_drive_allocations_are_checked_first() {
         &["s.toml"],
         "shadows.map_resolution = 8192 would need about 1.5 GiB",
     );
+    // The maps of all lights together: 2048² is 96 MiB a light, 1.1 GiB for twelve.
+    let lights: String = (0..12)
+        .map(|i| {
+            format!(
+                "\n[[lights]]\ntype = \"point\"\nposition = [{i}.0, 2.0, 2.0]\nintensity = [1.0, 1.0, 1.0]\n"
+            )
+        })
+        .collect();
+    let text = scene(
+        CAMERA,
+        &format!("\n[shadows]\nmethod = \"shadow-map\"\nmap_resolution = 2048\n{lights}"),
+    );
+    render_error(
+        &[("s.toml", &text)],
+        &["s.toml"],
+        "the six shadow-map faces of each of the scene's 13 lights",
+    );
+    let text = scene(
+        CAMERA,
+        "\n[shadows]\nmethod = \"shadow-map\"\nmap_resolution = 2048\n",
+    );
+    let dir = workspace(&[("s.toml", &text)]);
+    let run = lumiere(&["render", "s.toml", "-o", "out.png"], dir.path());
+    assert_eq!(run.code, 0, "one light's 2048² maps fit: {}", run.stderr);
 }
 
 /// A PFM header whose size overflows (or exceeds the data after it) is one error

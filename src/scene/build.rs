@@ -74,22 +74,6 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         "shadows.max_memory_mb",
         "shadows.max_memory_mb must be positive"
     );
-    if s.method == crate::settings::ShadowMethod::ShadowMap {
-        // Six faces of f32 depths per light.
-        let needed = 24 * (s.map_resolution as u64).pow(2);
-        let budget = s.max_memory_mb.saturating_mul(1 << 20);
-        if needed > budget {
-            return Err(Error::OverBudget(Box::new(crate::error::OverBudget {
-                key: "shadows.map_resolution".into(),
-                value: s.map_resolution.to_string(),
-                what: "each light's six shadow-map faces".into(),
-                needed,
-                budget,
-                budget_key: "shadows.max_memory_mb".into(),
-                suggestion: "use a lower map_resolution, or raise shadows.max_memory_mb".into(),
-            })));
-        }
-    }
     ensure_valid!(
         s.map_bias.is_finite() && s.map_bias >= 0.0,
         "shadows.map_bias",
@@ -213,6 +197,26 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         }
     }
     lights.extend(builder.polygon_lights());
+    if shadows.method == crate::settings::ShadowMethod::ShadowMap && !lights.is_empty() {
+        // Six faces of f32 depths per light, all kept by the renderer.
+        let needed =
+            (24 * (shadows.map_resolution as u64).pow(2)).saturating_mul(lights.len() as u64);
+        let budget = s.max_memory_mb.saturating_mul(1 << 20);
+        if needed > budget {
+            return Err(Error::OverBudget(Box::new(crate::error::OverBudget {
+                key: "shadows.map_resolution".into(),
+                value: shadows.map_resolution.to_string(),
+                what: format!(
+                    "the six shadow-map faces of each of the scene's {} lights",
+                    lights.len()
+                ),
+                needed,
+                budget,
+                budget_key: "shadows.max_memory_mb".into(),
+                suggestion: "use a lower map_resolution, or raise shadows.max_memory_mb".into(),
+            })));
+        }
+    }
     builder.warn_untextured_modes(render.shading);
     // A black image with no word of why helps nobody.
     if builder.polygons.is_empty() {
