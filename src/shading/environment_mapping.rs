@@ -67,13 +67,7 @@ impl EnvironmentSample<'_> {
     /// The radiance the environment adds at the sample: k_r T(R), or Fresnel's blend
     /// of T(R) and T(T) for a material with an index of refraction.
     pub fn radiance(&self, map: &EnvironmentMap) -> Vec3 {
-        let s = &self.band.samples[self.k];
-        let n = if self.front {
-            self.normal
-        } else {
-            -self.normal
-        };
-        let to_eye = (self.view.eye - s.position).normalize();
+        let (n, to_eye) = self.normal_and_eye();
         let around = self.neighbourhood();
         let lookup = |ray: Ray| {
             let d = direction(ray, n, to_eye).normalize();
@@ -102,15 +96,20 @@ impl EnvironmentSample<'_> {
     /// The mip-map level λ the mirror-direction lookup reads (`None` for filters
     /// without levels).
     pub fn reflected_level(&self, map: &EnvironmentMap) -> Option<f64> {
+        let (n, to_eye) = self.normal_and_eye();
+        let d = direction(Ray::Reflected, n, to_eye).normalize();
+        map.level(d, footprint(&self.neighbourhood(), Ray::Reflected))
+    }
+
+    /// The normal turned towards the eye, and the unit direction to the eye.
+    fn normal_and_eye(&self) -> (DVec3, DVec3) {
         let s = &self.band.samples[self.k];
         let n = if self.front {
             self.normal
         } else {
             -self.normal
         };
-        let to_eye = (self.view.eye - s.position).normalize();
-        let d = direction(Ray::Reflected, n, to_eye).normalize();
-        map.level(d, footprint(&self.neighbourhood(), Ray::Reflected))
+        (n, (self.view.eye - s.position).normalize())
     }
 
     fn neighbourhood(&self) -> Neighbourhood {

@@ -145,24 +145,31 @@ impl EnvironmentMap {
         filter: Filter,
         f: impl Fn(DVec3) -> Vec3 + Sync,
     ) -> EnvironmentMap {
-        let texel = |face: usize, (w, h): (u32, u32), i: u32, j: u32| {
+        EnvironmentMap::texel_by_texel(layout, size, filter, |face, (w, h), i, j| {
             let mut sum = Vec3::ZERO;
             for (a, b) in [(0.25, 0.25), (0.75, 0.25), (0.25, 0.75), (0.75, 0.75)] {
                 let uv = DVec2::new((i as f64 + a) / w as f64, 1.0 - (j as f64 + b) / h as f64);
                 sum += f(texel_direction(layout, face, uv));
             }
             sum / 4.0
-        };
-        let image = |face: usize, (w, h): (u32, u32)| {
-            let texels = (0..w * h)
+        })
+    }
+
+    /// A map of `layout` at `size` (as `generate` takes it) whose texel (i, j) of
+    /// face `face`, in an image of (w, h) texels, is `texel(face, (w, h), i, j)`.
+    fn texel_by_texel(
+        layout: Layout,
+        size: u32,
+        filter: Filter,
+        texel: impl Fn(usize, (u32, u32), u32, u32) -> Vec3 + Sync,
+    ) -> EnvironmentMap {
+        let image = |face: usize, (w, h): (u32, u32)| Texels {
+            width: w,
+            height: h,
+            texels: (0..w * h)
                 .into_par_iter()
                 .map(|k| texel(face, (w, h), k % w, k / w))
-                .collect();
-            Texels {
-                width: w,
-                height: h,
-                texels,
-            }
+                .collect(),
         };
         match layout {
             Layout::LatLong => EnvironmentMap::flat(layout, image(0, (2 * size, size)), filter),
@@ -241,32 +248,14 @@ impl EnvironmentMap {
     /// The same surroundings in `layout` at `size`: each texel the filtered lookup of
     /// its direction, with the texel's own footprint.
     pub fn convert(&self, layout: Layout, size: u32) -> EnvironmentMap {
-        let texel = |face: usize, (w, h): (u32, u32), i: u32, j: u32| {
+        EnvironmentMap::texel_by_texel(layout, size, self.filter, |face, (w, h), i, j| {
             let at = |x: f64, y: f64| {
                 texel_direction(layout, face, DVec2::new(x / w as f64, 1.0 - y / h as f64))
             };
             let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
             let d = at(x, y);
             self.lookup(d, [at(x + 1.0, y) - d, at(x, y + 1.0) - d])
-        };
-        let image = |face: usize, (w, h): (u32, u32)| Texels {
-            width: w,
-            height: h,
-            texels: (0..w * h)
-                .into_par_iter()
-                .map(|k| texel(face, (w, h), k % w, k / w))
-                .collect(),
-        };
-        match layout {
-            Layout::LatLong => {
-                EnvironmentMap::flat(layout, image(0, (2 * size, size)), self.filter)
-            }
-            Layout::Sphere => EnvironmentMap::flat(layout, image(0, (size, size)), self.filter),
-            Layout::Cube => EnvironmentMap::cube(
-                (0..6).map(|f| image(f, (size, size))).collect(),
-                self.filter,
-            ),
-        }
+        })
     }
 
     /// The map as one image: the latitude-longitude or sphere image, or the cube's
