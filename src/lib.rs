@@ -10,6 +10,7 @@
 pub mod catalogue;
 mod error;
 pub mod geometry;
+pub mod global;
 pub mod media;
 pub mod output;
 pub mod radiosity;

@@ -268,3 +268,82 @@ impl MediumSettings {
         self.extinction * self.albedo
     }
 }
+
+/// Which global-illumination method lights the frame (`[global] method`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum GlobalMethod {
+    /// Whitted 1980: recursive rays from the eye, a shadow ray per light.
+    RayTracing,
+    /// Wallace, Cohen & Greenberg 1987: radiosity extended through planar mirrors
+    /// (pass 1), then reflected rays from the eye reading it (pass 2).
+    TwoPass,
+    /// Rushmeier & Torrance 1990: pass 1 extended to specular transmission through
+    /// thin panes and diffuse transmission through translucent panels.
+    RushmeierTorrance,
+}
+
+/// The four ways light passes between two surfaces (Wallace et al. 1987), each on
+/// or off.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Mechanisms {
+    /// Ordinary radiosity: light leaving a diffuse surface lights a diffuse one.
+    pub diffuse_diffuse: bool,
+    /// Pass 1's factors through mirrors and panes (a lamp's light thrown by a mirror).
+    pub specular_diffuse: bool,
+    /// Pass 2's rays from the eye off a specular surface onto a diffuse one.
+    pub diffuse_specular: bool,
+    /// Pass 2's rays continuing from one specular surface to another.
+    pub specular_specular: bool,
+}
+
+impl Mechanisms {
+    pub const ALL: Mechanisms = Mechanisms {
+        diffuse_diffuse: true,
+        specular_diffuse: true,
+        diffuse_specular: true,
+        specular_specular: true,
+    };
+}
+
+/// Whitted's weights of the reflected and transmitted rays.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SpecularWeights {
+    /// The material's k_s (`mirror`) and k_t (`transmittance`) as constants, as
+    /// Whitted's images used them.
+    #[default]
+    Constant,
+    /// k_s and k_t scaled by Fresnel's reflectance of an unpolarised dielectric
+    /// interface, F and 1 − F (exact formulas, not Schlick's approximation).
+    Fresnel,
+}
+
+/// A scene's `[global]` settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GlobalSettings {
+    pub method: GlobalMethod,
+    /// Longest chain of reflected and refracted rays from the eye.
+    pub depth: u32,
+    /// A ray is not spawned when the product of the coefficients along its path
+    /// falls below this (each band's largest).
+    pub threshold: f64,
+    /// Whitted's adaptive antialiasing: how many times a pixel may be split into
+    /// four where its corners differ (0: the mean of the four corners).
+    pub subdivisions: u32,
+    /// Corners differ when a displayed channel (exposure applied, clamped to
+    /// [0, 1]) differs by more than this.
+    pub contrast: f64,
+    pub weights: SpecularWeights,
+    /// Pass 1: mirror-of-mirror (and pane) paths followed to this depth.
+    pub window_depth: u32,
+    pub mechanisms: Mechanisms,
+    /// Pass 2: direct light from emitting polygons computed per sample (the
+    /// shadow method's exact visible part, Lambert's formula) instead of read from
+    /// the radiosity mesh; the mesh supplies the indirect light only.
+    pub exact_direct: bool,
+    /// Ray tracing: built-in spheres intersected as quadrics, not as their polygons.
+    pub analytic_spheres: bool,
+    /// Whitted's ambient term I_a (radiance per unit diffuse reflectance).
+    pub ambient: glam::Vec3,
+}

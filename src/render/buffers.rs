@@ -228,6 +228,14 @@ fn fixed_description(name: &str) -> String {
 
 /// The buffers `renderer`'s frames can give.
 pub fn available_buffers(renderer: &Renderer) -> Result<Vec<BufferInfo>> {
+    let traced = renderer.scene().global.as_ref().map(|g| g.method);
+    if traced == Some(crate::settings::GlobalMethod::RayTracing) {
+        let (name, description) = super::ray_traced::RAYS;
+        return Ok(vec![BufferInfo {
+            name: name.into(),
+            description: description.into(),
+        }]);
+    }
     let integrator = renderer.integrator()?;
     let direct = integrator.direct_lights(renderer.scene());
     let shadows = renderer.shadows_of(&direct)?;

@@ -14,6 +14,11 @@ const BAND_SAMPLES: u32 = 1 << 18;
 
 pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Rendered> {
     let scene = renderer.scene();
+    if let Some(g) = scene.global.as_ref()
+        && g.method == crate::settings::GlobalMethod::RayTracing
+    {
+        return super::ray_traced::render(renderer, g, wanted);
+    }
     let integrator = renderer.integrator()?;
     let direct = integrator.direct_lights(scene);
     let shadows = renderer.shadows_of(&direct)?;

@@ -14,6 +14,7 @@ pub mod capture;
 mod frame;
 mod integrator;
 mod medium;
+pub(crate) mod ray_traced;
 mod renderer;
 
 pub use buffers::{BufferInfo, available_buffers};

@@ -10,6 +10,7 @@
 use super::capture::capture_cube;
 use super::frame::render_frame;
 use super::integrator::{Integrator, lit_directly};
+use crate::global::TracedScene;
 use crate::output::{Buffer, Image};
 use crate::radiosity::{self, Solution};
 use crate::scene::{Camera, EnvironmentSource, Light, Scene};
@@ -48,6 +49,8 @@ pub struct Renderer {
     lights: Vec<Mutex<Option<Arc<dyn LightShadows>>>>,
     radiosity: Mutex<Option<Arc<Solution>>>,
     environments: Mutex<Option<EnvironmentMaps>>,
+    /// The scene for rays (polygons, and spheres as quadrics or not).
+    traced: Mutex<Option<(bool, Arc<TracedScene>)>>,
     /// Whether captured environments are made (not inside a capture).
     captures: bool,
     built_occluders: AtomicUsize,
@@ -65,6 +68,7 @@ impl Renderer {
             occluders: Mutex::new(None),
             radiosity: Mutex::new(None),
             environments: Mutex::new(None),
+            traced: Mutex::new(None),
             captures: true,
             built_occluders: AtomicUsize::new(0),
             built_light_shadows: AtomicUsize::new(0),
@@ -106,6 +110,19 @@ impl Renderer {
         let maps: EnvironmentMaps = maps.into();
         *slot = Some(maps.clone());
         Ok(maps)
+    }
+
+    /// The scene as rays see it, built once (geometry never changes).
+    pub fn traced_scene(&self, analytic_spheres: bool) -> Arc<TracedScene> {
+        let mut slot = self.traced.lock().expect("no poisoned lock");
+        match slot.as_ref() {
+            Some((analytic, traced)) if *analytic == analytic_spheres => traced.clone(),
+            _ => {
+                let traced = Arc::new(TracedScene::new(&self.scene, analytic_spheres));
+                *slot = Some((analytic_spheres, traced.clone()));
+                traced
+            }
+        }
     }
 
     /// Captured environments depend on the lights and shadows: made again.

@@ -122,6 +122,11 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         .map(radiosity_settings::from_file)
         .transpose()?;
 
+    let global = file
+        .global
+        .as_ref()
+        .map(super::global_settings::from_file)
+        .transpose()?;
     let mut builder = Builder {
         eye: camera.eye,
         ..Default::default()
@@ -151,7 +156,13 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         .transpose()?;
     let render = RenderSettings { backdrop, ..render };
     for (name, m) in &file.materials {
-        let material = materials::from_file(name, m, &builder.texture_index, &environment_index)?;
+        let material = materials::from_file(
+            name,
+            m,
+            &builder.texture_index,
+            &environment_index,
+            global.is_some(),
+        )?;
         builder.add_material(material);
     }
     for (index, object) in file.objects.iter().enumerate() {
@@ -240,6 +251,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         shadows,
         radiosity,
         medium,
+        global,
         materials: builder.materials,
         objects: builder.objects,
         polygons: builder.polygons,
@@ -437,6 +449,7 @@ impl Builder {
         self.objects.push(Object {
             name,
             shading: o.shading,
+            sphere: o.shape == ShapeKind::Sphere,
             frame,
         });
         self.objects.len() - 1
@@ -568,6 +581,7 @@ impl Builder {
                     name,
                     shading: None,
                     frame: ObjectFrame::identity(),
+                    sphere: false,
                 });
                 let object = self.objects.len() - 1;
                 for face in shapes::polygon(&corners) {

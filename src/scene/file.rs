@@ -27,6 +27,9 @@ pub struct SceneFile {
     pub radiosity: Option<RadiosityFile>,
     /// Present: a participating medium fills the scene (or a box of it).
     pub medium: Option<MediumFile>,
+    /// Present: global illumination (Whitted ray tracing, the two-pass method,
+    /// Rushmeier & Torrance).
+    pub global: Option<GlobalFile>,
     #[serde(default)]
     pub environments: BTreeMap<String, EnvironmentFile>,
 }
@@ -156,6 +159,58 @@ fn subdivision_levels() -> u32 {
     2
 }
 
+/// `[global]`: the global-illumination method and its settings.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GlobalFile {
+    pub method: crate::settings::GlobalMethod,
+    #[serde(default = "ray_depth")]
+    pub depth: u32,
+    #[serde(default = "ray_threshold")]
+    pub threshold: f64,
+    #[serde(default = "subdivisions")]
+    pub subdivisions: u32,
+    #[serde(default = "contrast")]
+    pub contrast: f64,
+    #[serde(default)]
+    pub weights: crate::settings::SpecularWeights,
+    #[serde(default = "window_depth")]
+    pub window_depth: u32,
+    /// Absent: all four.
+    pub mechanisms: Option<Vec<MechanismFile>>,
+    #[serde(default)]
+    pub exact_direct: bool,
+    #[serde(default = "yes")]
+    pub analytic_spheres: bool,
+    #[serde(default)]
+    pub ambient: Vec3File,
+}
+
+/// One of the four transfer mechanisms, as `[global] mechanisms` names it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MechanismFile {
+    DiffuseDiffuse,
+    SpecularDiffuse,
+    DiffuseSpecular,
+    SpecularSpecular,
+}
+
+fn ray_depth() -> u32 {
+    5
+}
+fn ray_threshold() -> f64 {
+    1e-3
+}
+fn subdivisions() -> u32 {
+    2
+}
+fn contrast() -> f64 {
+    0.05
+}
+fn window_depth() -> u32 {
+    2
+}
 /// `[shadows]`: which method, and the shadow map's settings.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -331,9 +386,14 @@ pub struct MaterialFile {
     /// Index of refraction: the surface reflects by Fresnel's weight and (with a
     /// transmittance) refracts.
     pub ior: Option<f64>,
-    /// What the refracted environment is multiplied by.
+    /// What the refracted environment is multiplied by; without `ior`, the
+    /// specular transmittance of a thin pane (light passes straight through).
     #[serde(default)]
     pub transmittance: Vec3File,
+    /// Diffuse transmittance τ_d: a translucent panel passes this share of the
+    /// light reaching its back on, diffusely, from its front (Rushmeier & Torrance).
+    #[serde(default)]
+    pub translucence: Vec3File,
     /// The environment map the mirror and refracted directions look up.
     pub environment: Option<String>,
 }

@@ -14,6 +14,7 @@ pub fn from_file(
     m: &MaterialFile,
     textures: &HashMap<String, usize>,
     environments: &HashMap<String, usize>,
+    traced: bool,
 ) -> Result<Material> {
     let what = |key: &str| format!("materials.{name}.{key}");
     let texture = |key: &str, given: &Option<String>| -> Result<Option<usize>> {
@@ -60,6 +61,7 @@ pub fn from_file(
         mirror: colour(&what("mirror"), m.mirror)?,
         ior: m.ior,
         transmittance: colour(&what("transmittance"), m.transmittance)?,
+        translucence: colour(&what("translucence"), m.translucence)?,
         environment: m
             .environment
             .as_ref()
@@ -77,10 +79,12 @@ pub fn from_file(
     let shows_environment = material.mirror.max_element() > 0.0
         || material.transmittance.max_element() > 0.0
         || material.ior.is_some();
+    // Under `[global]` reflected and refracted rays see the scene itself; an
+    // environment map is then only what rays leaving the scene see.
     ensure_valid!(
-        !shows_environment || material.environment.is_some(),
+        traced || !shows_environment || material.environment.is_some(),
         what("environment"),
-        "{}: mirror, ior and transmittance look up an environment map; name one",
+        "{}: mirror, ior and transmittance look up an environment map; name one (or trace rays with a [global] method)",
         what("environment")
     );
     ensure_valid!(
@@ -90,10 +94,16 @@ pub fn from_file(
         what("environment")
     );
     ensure_valid!(
-        material.transmittance.max_element() == 0.0 || material.ior.is_some(),
+        traced || material.transmittance.max_element() == 0.0 || material.ior.is_some(),
         what("transmittance"),
         "{}: refraction needs the material's index of refraction, `ior`",
         what("transmittance")
+    );
+    ensure_valid!(
+        traced || material.translucence.max_element() == 0.0,
+        what("translucence"),
+        "{}: diffuse transmission is Rushmeier & Torrance's radiosity; set [global] method = \"rushmeier-torrance\"",
+        what("translucence")
     );
     ensure_valid!(
         m.exponent.is_finite() && m.exponent >= 0.0,
@@ -139,13 +149,22 @@ fn check_energy(m: &Material) -> Result<()> {
         )));
     }
     for (key, part) in [("mirror", m.mirror), ("transmittance", m.transmittance)] {
-        let total = m.diffuse + m.specular + part;
+        let total = m.diffuse + m.specular + m.translucence + part;
         if total.max_element() > 1.0 {
             return Err(Error::Scene(format!(
-                "material {}: diffuse + specular + {key} exceeds 1 ({total})",
+                "material {}: diffuse + specular + translucence + {key} exceeds 1 ({total})",
                 m.name
             )));
         }
+    }
+    // Without an index of refraction nothing weighs reflection against
+    // transmission (Fresnel): every part is a constant share of the light.
+    let total = m.diffuse + m.specular + m.mirror + m.transmittance + m.translucence;
+    if m.ior.is_none() && total.max_element() > 1.0 {
+        return Err(Error::Scene(format!(
+            "material {}: diffuse + specular + mirror + transmittance + translucence exceeds 1 ({total})",
+            m.name
+        )));
     }
     Ok(())
 }

@@ -8,6 +8,7 @@
 mod build;
 mod environments;
 pub mod file;
+pub mod global_settings;
 pub mod lights;
 mod materials;
 mod medium_settings;
@@ -72,8 +73,12 @@ pub struct Material {
     pub mirror: Vec3,
     /// Index of refraction of the material (the outside is vacuum, 1).
     pub ior: Option<f64>,
-    /// What the environment seen in the refracted direction is multiplied by.
+    /// What the environment seen in the refracted direction is multiplied by; for
+    /// ray tracing and radiosity's first pass, the specular transmittance τ_s
+    /// (without `ior`: a thin pane, light passes straight through).
     pub transmittance: Vec3,
+    /// Diffuse transmittance τ_d of a translucent panel (Rushmeier & Torrance).
+    pub translucence: Vec3,
     /// Index into `Scene::environments` of the map reflections and refractions read.
     pub environment: Option<usize>,
 }
@@ -88,6 +93,11 @@ pub struct Bump {
 impl Material {
     pub fn is_emitter(&self) -> bool {
         self.emission.max_element() > 0.0
+    }
+
+    /// Whether it reflects or transmits specularly (a mirror, glass, a pane).
+    pub fn is_specular(&self) -> bool {
+        self.mirror.max_element() > 0.0 || self.transmittance.max_element() > 0.0
     }
 
     /// Whether it shows an environment (reflected or refracted).
@@ -154,6 +164,9 @@ pub struct Object {
     /// Its modelling frame: texture mappings are given in it, so textures and bumps
     /// move with the object.
     pub frame: ObjectFrame,
+    /// A built-in sphere: the unit sphere under `frame`, which a ray tracer may
+    /// intersect as a quadric instead of its polygons.
+    pub sphere: bool,
 }
 
 /// The transform between an object's modelling coordinates and the world.
@@ -195,6 +208,8 @@ pub struct Scene {
     pub radiosity: Option<crate::settings::RadiositySettings>,
     /// A participating medium (single scattering from the lights).
     pub medium: Option<crate::settings::MediumSettings>,
+    /// Lit by a global-illumination method (`[global]`).
+    pub global: Option<crate::settings::GlobalSettings>,
     pub materials: Vec<Material>,
     pub objects: Vec<Object>,
     pub polygons: Vec<Polygon>,

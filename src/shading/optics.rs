@@ -41,3 +41,23 @@ pub fn schlick(cos_incident: f64, eta1: f64, eta2: f64) -> f64 {
     };
     f0 + (1.0 - f0) * (1.0 - cos.clamp(0.0, 1.0)).powi(5)
 }
+
+/// Fresnel's reflectance of unpolarised light at a smooth interface from index η₁
+/// to η₂, the mean of the s and p polarisations' (the exact formulas): for cos θ₁
+/// on the incident side, sin θ₂ = (η₁/η₂) sin θ₁, r_s = (η₁ cos θ₁ − η₂ cos θ₂) /
+/// (η₁ cos θ₁ + η₂ cos θ₂), r_p = (η₂ cos θ₁ − η₁ cos θ₂) / (η₂ cos θ₁ + η₁ cos θ₂),
+/// F = (r_s² + r_p²)/2; 1 beyond the critical angle, 0 between equal indices.
+pub fn fresnel(cos_incident: f64, eta1: f64, eta2: f64) -> f64 {
+    if eta1 == eta2 {
+        return 0.0;
+    }
+    let cos1 = cos_incident.clamp(0.0, 1.0);
+    let sin2 = (eta1 / eta2).powi(2) * (1.0 - cos1 * cos1);
+    if sin2 >= 1.0 {
+        return 1.0;
+    }
+    let cos2 = (1.0 - sin2).sqrt();
+    let rs = (eta1 * cos1 - eta2 * cos2) / (eta1 * cos1 + eta2 * cos2);
+    let rp = (eta2 * cos1 - eta1 * cos2) / (eta2 * cos1 + eta1 * cos2);
+    0.5 * (rs * rs + rp * rp)
+}
