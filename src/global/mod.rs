@@ -10,6 +10,7 @@
 
 pub mod local;
 pub mod traced_scene;
+pub mod two_pass;
 pub mod whitted;
 
 pub use traced_scene::TracedScene;

@@ -72,8 +72,14 @@ impl Hemicube {
         (self.top.iter().sum(), self.side.iter().sum())
     }
 
+    /// The delta form factors of face `face` (0 the top, 1 to 4 the sides), row-major
+    /// as its item buffer.
+    pub(crate) fn deltas(&self, face: usize) -> &[f64] {
+        if face == 0 { &self.top } else { &self.side }
+    }
+
     /// The five faces' views from `centre` with the top face along `normal`.
-    fn views(&self, centre: DVec3, normal: DVec3) -> [View; 5] {
+    pub(crate) fn views(&self, centre: DVec3, normal: DVec3) -> [View; 5] {
         let (t, b) = normal.any_orthonormal_pair();
         let r = self.resolution;
         let half = r as f64 / 2.0;

@@ -10,6 +10,7 @@
 
 pub mod analytic;
 pub mod display;
+pub mod extended;
 pub mod form_factors;
 pub mod gathering;
 pub mod hemicube;
@@ -18,6 +19,7 @@ pub mod nusselt;
 pub mod receivers;
 pub mod shooting;
 pub mod subdivision;
+pub mod windows;
 
 use crate::scene::Scene;
 pub use crate::settings::{Division, RadiositySettings as Settings, Solver, Subdivision};
@@ -90,6 +92,35 @@ pub fn mesh(scene: &Scene, settings: &Settings) -> Result<Mesh> {
     Ok(mesh)
 }
 
+/// The first pass's extension, when the scene's `[global]` method has one and the
+/// scene has something for it to do (a mirror, a pane, a translucent panel, or a
+/// mechanism left out); `None` gives plain radiosity, bit for bit.
+pub fn extension(scene: &Scene) -> Option<extended::Extension> {
+    use crate::settings::{GlobalMethod, Mechanisms};
+    let g = scene.global.as_ref()?;
+    let follow = match g.method {
+        GlobalMethod::RayTracing => return None,
+        GlobalMethod::TwoPass => windows::Follow {
+            mirrors: true,
+            panes: false,
+        },
+        GlobalMethod::RushmeierTorrance => windows::Follow {
+            mirrors: true,
+            panes: true,
+        },
+    };
+    let something = scene.materials.iter().any(|m| {
+        m.mirror.max_element() > 0.0
+            || m.transmittance.max_element() > 0.0
+            || m.translucence.max_element() > 0.0
+    });
+    (something || g.mechanisms != Mechanisms::ALL).then_some(extended::Extension {
+        follow,
+        window_depth: g.window_depth,
+        mechanisms: g.mechanisms,
+    })
+}
+
 /// Memory the hemi-cube method holds, estimated: its delta form-factor tables (R² +
 /// 4 × R²/2 of f64) once, and per thread one hemi-cube's item buffers (R² +
 /// 4 × R²/2 of u32). Other methods hold no buffers of this size.
@@ -114,14 +145,37 @@ pub fn solve(
 ) -> Result<Solution> {
     let mesh = mesh(scene, settings)?;
     let estimator = Estimator::new(settings.form_factors, settings.resolution, scene);
+    let extension = extension(scene);
+    if extension.is_some() {
+        if settings.solver != Solver::Gathering {
+            return Err(Error::Radiosity(
+                "the first pass through mirrors, panes and translucent panels gathers, as Wallace et al. and Rushmeier & Torrance solved it: set radiosity.solver = \"gathering\"".into(),
+            ));
+        }
+        if settings.subdivision.is_some() {
+            return Err(Error::Radiosity(
+                "adaptive subdivision refines plain radiosity; leave `subdivide` out of a two-pass scene".into(),
+            ));
+        }
+    }
     match settings.solver {
         Solver::Gathering => {
-            let g = gathering::gather(
-                &mesh,
-                &estimator,
-                settings.tolerance,
-                settings.memory_budget,
-            )?;
+            let g = match extension {
+                Some(extension) => extended::gather(
+                    scene,
+                    &mesh,
+                    &estimator,
+                    extension,
+                    settings.tolerance,
+                    settings.memory_budget,
+                )?,
+                None => gathering::gather(
+                    &mesh,
+                    &estimator,
+                    settings.tolerance,
+                    settings.memory_budget,
+                )?,
+            };
             let mut summary = format!(
                 "gathering: {} patches, {} elements, Gauss-Seidel sweeps (r, g, b) {:?}",
                 mesh.patches.len(),

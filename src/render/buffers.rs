@@ -128,7 +128,7 @@ fn catalogue(
         Kind::Normal,
         Kind::Uv,
     ];
-    if matches!(integrator, Integrator::Radiosity(_)) {
+    if matches!(integrator, Integrator::Radiosity(..)) {
         kinds.extend([Kind::Element, Kind::Radiosity]);
     }
     if scene
@@ -173,7 +173,7 @@ fn catalogue(
             }
         }
     }
-    if let Integrator::Radiosity(solution) = integrator {
+    if let Integrator::Radiosity(solution, _) = integrator {
         fixed.extend(hemicube_buffers(renderer, &solution.mesh));
     }
     (kinds, fixed)
@@ -374,7 +374,7 @@ impl FrameBuffers {
                                     .to_array(),
                             ),
                             Kind::Radiosity => data.extend(match integrator {
-                                Integrator::Radiosity(solution) if !empty => {
+                                Integrator::Radiosity(solution, _) if !empty => {
                                     solution.elements[s.element as usize].to_array()
                                 }
                                 _ => [0.0; 3],

@@ -12,6 +12,7 @@
 //! says which polygons the scan-line pass draws (with which vertex colours), which
 //! lights shading adds directly, and how a band's samples become radiance.
 
+use crate::global::two_pass::SecondPass;
 use crate::radiosity::{Solution, display};
 use crate::raster::{ScreenPolygon, ToPrepare, View, Visibility, VisibleSurface, prepare};
 use crate::scene::{Light, Scene, ShadingMode};
@@ -23,7 +24,8 @@ use std::sync::Arc;
 #[derive(Clone)]
 pub enum Integrator {
     Direct,
-    Radiosity(Arc<Solution>),
+    /// With the second pass of the two-pass method (rays off specular surfaces).
+    Radiosity(Arc<Solution>, Option<Arc<SecondPass>>),
 }
 
 impl Integrator {
@@ -31,13 +33,13 @@ impl Integrator {
     pub fn name(&self) -> &'static str {
         match self {
             Integrator::Direct => "direct",
-            Integrator::Radiosity(_) => "radiosity",
+            Integrator::Radiosity(..) => "radiosity",
         }
     }
 
     /// Per light, whether shading adds it directly (and so whether it is shadowed).
     pub fn direct_lights(&self, scene: &Scene) -> Vec<bool> {
-        lit_directly(scene, matches!(self, Integrator::Radiosity(_)))
+        lit_directly(scene, matches!(self, Integrator::Radiosity(..)))
     }
 
     /// Whether Gouraud shading must interpolate each direct light on its own: when
@@ -50,7 +52,7 @@ impl Integrator {
         gouraud
             && match self {
                 Integrator::Direct => shadowed && scene.lights.len() > 1,
-                Integrator::Radiosity(_) => direct.iter().any(|&d| d),
+                Integrator::Radiosity(..) => direct.iter().any(|&d| d),
             }
     }
 
@@ -60,7 +62,7 @@ impl Integrator {
         let only: Vec<bool> = (0..scene.lights.len()).map(|m| m == l).collect();
         match self {
             Integrator::Direct => self.draw_list(scene, view, &only),
-            Integrator::Radiosity(solution) => {
+            Integrator::Radiosity(solution, _) => {
                 let pieces = elements(scene, solution);
                 let colors: Vec<Vec<Vec3>> = pieces
                     .par_iter()
@@ -113,7 +115,7 @@ impl Integrator {
                         }),
                 )
             }
-            Integrator::Radiosity(solution) => {
+            Integrator::Radiosity(solution, _) => {
                 let pieces = elements(scene, solution);
                 prepare(
                     view,
@@ -140,7 +142,7 @@ impl Integrator {
     ) -> Vec<Vec3> {
         match self {
             Integrator::Direct => shading.shade_band(band, visibility, gouraud),
-            Integrator::Radiosity(_) => (0..band.samples.len())
+            Integrator::Radiosity(_, second) => (0..band.samples.len())
                 .into_par_iter()
                 .map(|k| {
                     let s = &band.samples[k];
@@ -157,13 +159,42 @@ impl Integrator {
                         Some(scale) => emitted + (s.color - emitted) * scale,
                         None => s.color,
                     };
-                    solved
+                    let mut radiance = solved
                         + shading.lit(band, k, visibility, gouraud)
-                        + shading.environment(band, k)
+                        + shading.environment(band, k);
+                    if let Some(second) = second
+                        && scene.material_of(s.polygon as usize).is_specular()
+                    {
+                        radiance += second_pass(shading, second, band, k);
+                    }
+                    radiance
                 })
                 .collect(),
         }
     }
+}
+
+/// The second pass at a visible sample of a specular surface.
+fn second_pass(
+    shading: &FrameShading,
+    second: &SecondPass,
+    band: &VisibleSurface,
+    k: usize,
+) -> Vec3 {
+    let scene = shading.scene();
+    let s = &band.samples[k];
+    let position = s.position;
+    let incident = (position - shading.eye()).normalize();
+    let mut normal = s
+        .normal
+        .as_dvec3()
+        .normalize_or(scene.polygons[s.polygon as usize].normal);
+    if normal.dot(incident) > 0.0 {
+        normal = -normal;
+    }
+    let (x, y) = band.position_of(k);
+    let stream = y as u64 * band.width as u64 + x as u64;
+    second.specular(scene, s.polygon, position, normal, incident, stream)
 }
 
 /// Per light, whether shading adds it directly: every light, but under radiosity

@@ -11,9 +11,11 @@ use super::capture::capture_cube;
 use super::frame::render_frame;
 use super::integrator::{Integrator, lit_directly};
 use crate::global::TracedScene;
+use crate::global::two_pass::{self, SecondPass};
 use crate::output::{Buffer, Image};
 use crate::radiosity::{self, Solution};
 use crate::scene::{Camera, EnvironmentSource, Light, Scene};
+use crate::settings::GlobalMethod;
 use crate::settings::ShadowSettings;
 use crate::shadow::{self, LightShadows, SceneOccluders, SharedWork};
 use crate::texture::environment::EnvironmentMap;
@@ -48,6 +50,8 @@ pub struct Renderer {
     occluders: Mutex<Option<Arc<SceneOccluders>>>,
     lights: Vec<Mutex<Option<Arc<dyn LightShadows>>>>,
     radiosity: Mutex<Option<Arc<Solution>>>,
+    /// The two-pass method's second pass over that solution.
+    second_pass: Mutex<Option<Arc<SecondPass>>>,
     environments: Mutex<Option<EnvironmentMaps>>,
     /// The scene for rays (polygons, and spheres as quadrics or not).
     traced: Mutex<Option<(bool, Arc<TracedScene>)>>,
@@ -67,6 +71,7 @@ impl Renderer {
             scene,
             occluders: Mutex::new(None),
             radiosity: Mutex::new(None),
+            second_pass: Mutex::new(None),
             environments: Mutex::new(None),
             traced: Mutex::new(None),
             captures: true,
@@ -196,6 +201,7 @@ impl Renderer {
     /// progress shown, say), so that it is not solved again.
     pub fn set_radiosity_solution(&mut self, solution: Arc<Solution>) {
         *self.radiosity.lock().expect("no poisoned lock") = Some(solution);
+        *self.second_pass.lock().expect("no poisoned lock") = None;
     }
 
     /// Refuses, before any work, a shadow method that cannot shadow one of the
@@ -220,19 +226,64 @@ impl Renderer {
 
     /// How this scene's frames are lit.
     pub fn integrator(&self) -> Result<Integrator> {
-        match &self.scene.radiosity {
-            None => Ok(Integrator::Direct),
-            Some(settings) => {
-                let mut slot = self.radiosity.lock().expect("no poisoned lock");
-                if let Some(solution) = slot.as_ref() {
-                    return Ok(Integrator::Radiosity(solution.clone()));
-                }
-                let solution = Arc::new(radiosity::solve(&self.scene, settings, &mut |_, _| {})?);
-                self.built_radiosity.fetch_add(1, Ordering::Relaxed);
-                *slot = Some(solution.clone());
-                Ok(Integrator::Radiosity(solution))
+        let Some(settings) = &self.scene.radiosity else {
+            if let Some(g) = &self.scene.global
+                && g.method != GlobalMethod::RayTracing
+            {
+                return Err(Error::Radiosity(format!(
+                    "global.method = \"{}\" reads a radiosity solution in its second pass: add a [radiosity] table",
+                    if g.method == GlobalMethod::TwoPass {
+                        "two-pass"
+                    } else {
+                        "rushmeier-torrance"
+                    }
+                )));
             }
-        }
+            return Ok(Integrator::Direct);
+        };
+        let second_pass = self
+            .scene
+            .global
+            .as_ref()
+            .filter(|g| g.method != GlobalMethod::RayTracing);
+        let solution = {
+            let mut slot = self.radiosity.lock().expect("no poisoned lock");
+            match slot.as_ref() {
+                Some(solution) => solution.clone(),
+                None => {
+                    if let Some(g) = second_pass {
+                        two_pass::check(&self.scene, g.method)?;
+                    }
+                    let solution =
+                        Arc::new(radiosity::solve(&self.scene, settings, &mut |_, _| {})?);
+                    self.built_radiosity.fetch_add(1, Ordering::Relaxed);
+                    *slot = Some(solution.clone());
+                    solution
+                }
+            }
+        };
+        let Some(g) = second_pass else {
+            return Ok(Integrator::Radiosity(solution, None));
+        };
+        let mut slot = self.second_pass.lock().expect("no poisoned lock");
+        let second = match slot.as_ref() {
+            Some(second) => second.clone(),
+            None => {
+                // Rays read the solution on its mesh: spheres stay polygons here.
+                let traced = self.traced_scene(false);
+                let lit = lit_directly(&self.scene, true);
+                let second = Arc::new(SecondPass::new(
+                    &self.scene,
+                    &solution,
+                    traced,
+                    g.clone(),
+                    lit,
+                ));
+                *slot = Some(second.clone());
+                second
+            }
+        };
+        Ok(Integrator::Radiosity(solution, Some(second)))
     }
 
     /// The shadow pre-passes of the lights `direct` selects (`None` for the others

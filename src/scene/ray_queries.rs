@@ -197,10 +197,31 @@ pub fn contains(polygon: &Polygon, p: DVec3) -> bool {
 pub fn interpolate(polygon: &Polygon, p: DVec3) -> (DVec3, DVec2) {
     let v = &polygon.vertices;
     let n = polygon.normal;
-    let a = v[0].position;
+    let Some((i, w)) = fan_weights(v.len(), |k| v[k].position, n, p) else {
+        return (v[0].normal, v[0].uv);
+    };
+    let (v0, v1, v2) = (&v[0], &v[i], &v[i + 1]);
+    let normal = v0.normal * w[0] + v1.normal * w[1] + v2.normal * w[2];
+    let uv = v0.uv * w[0] + v1.uv * w[1] + v2.uv * w[2];
+    (normal.normalize_or(n), uv)
+}
+
+/// The fan triangle (vertex 0, i, i + 1) of a planar polygon of `count` vertices at
+/// `position(k)` (unit normal `n`) that holds `p`, chosen as `interpolate` explains, and `p`'s barycentric coordinates in
+/// it; `None` when every fan triangle has zero area.
+pub fn fan_weights(
+    count: usize,
+    position: impl Fn(usize) -> DVec3,
+    n: DVec3,
+    p: DVec3,
+) -> Option<(usize, [f64; 3])> {
+    if count == 0 {
+        return None;
+    }
+    let a = position(0);
     let mut best: Option<(f64, usize, [f64; 3])> = None;
-    for i in 1..v.len().saturating_sub(1) {
-        let (b, c) = (v[i].position, v[i + 1].position);
+    for i in 1..count.saturating_sub(1) {
+        let (b, c) = (position(i), position(i + 1));
         let area = (b - a).cross(c - a).dot(n);
         if area <= 0.0 {
             continue;
@@ -219,11 +240,5 @@ pub fn interpolate(polygon: &Polygon, p: DVec3) -> (DVec3, DVec2) {
             best = Some((least, i, w));
         }
     }
-    let Some((_, i, w)) = best else {
-        return (v[0].normal, v[0].uv);
-    };
-    let (v0, v1, v2) = (&v[0], &v[i], &v[i + 1]);
-    let normal = v0.normal * w[0] + v1.normal * w[1] + v2.normal * w[2];
-    let uv = v0.uv * w[0] + v1.uv * w[1] + v2.uv * w[2];
-    (normal.normalize_or(n), uv)
+    best.map(|(_, i, w)| (i, w))
 }

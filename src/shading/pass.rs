@@ -83,6 +83,11 @@ impl<'a> FrameShading<'a> {
     }
 
     /// The scene it shades.
+    /// Where the frame is seen from.
+    pub fn eye(&self) -> glam::DVec3 {
+        self.view.eye
+    }
+
     pub fn scene(&self) -> &'a Scene {
         self.scene
     }

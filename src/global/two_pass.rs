@@ -1,0 +1,292 @@
+//! The view-dependent second pass of J. R. Wallace, M. F. Cohen, D. P. Greenberg,
+//! "A two-pass solution to the rendering equation: a synthesis of ray tracing and
+//! radiosity methods", SIGGRAPH '87, and the view pass of H. E. Rushmeier,
+//! K. E. Torrance, "Extending the radiosity method to include specularly reflecting
+//! and translucent materials", ACM TOG 9(1), 1990.
+//!
+//! The first pass (`radiosity::extended`) has put every path that ends on a diffuse
+//! surface into the radiosity solution, the light mirrors throw onto walls included
+//! (specular-diffuse). What is left depends on the eye: per visible sample, the
+//! diffuse part is the solution's, interpolated (diffuse-diffuse); where the surface
+//! is specular, a reflected ray (and, through a pane, a transmitted one) is followed
+//! to the surface it meets and that surface's pass-1 radiance B/π read there
+//! (diffuse-specular); a specular surface met that way sends the ray on
+//! (specular-specular), to the depth limit:
+//!
+//!   I_pixel = I_d + ρ_s I(reflected) + τ_s I(transmitted).
+//!
+//! No double counting: pass 1 already holds the mirrored light on diffuse surfaces,
+//! so pass 2 adds no mirror-reflected light-source illumination to them; lights the
+//! solution does not hold (point, spot, distant, sphere) are added where rays land,
+//! with shadow rays, as the shading pass adds them at visible samples.
+//!
+//! Choices left open: ideal mirrors, one ray each (the paper's reflection frustum
+//! for glossy surfaces is not built); panes are thin (the transmitted ray goes
+//! straight on); where a ray lands the solution is interpolated over the element's
+//! fan triangles (Gouraud on the screen interpolates along edges and spans; both
+//! agree on the element's edges) and textures are not applied.
+
+use super::local::lights_at;
+use super::traced_scene::{Leaving, TracedScene};
+use crate::radiosity::{Solution, display};
+use crate::scene::ray_queries::{contains, fan_weights};
+use crate::scene::{Polygon, Scene, Vertex};
+use crate::settings::{GlobalMethod, GlobalSettings};
+use crate::{Error, Result};
+use glam::{DVec3, Vec3};
+use std::sync::Arc;
+
+/// Refuses materials a method's first pass cannot carry: two-pass follows planar
+/// mirrors only; Rushmeier & Torrance's panes are thin (no index of refraction).
+pub fn check(scene: &Scene, method: GlobalMethod) -> Result<()> {
+    for m in &scene.materials {
+        let transmits = m.transmittance.max_element() > 0.0 || m.translucence.max_element() > 0.0;
+        match method {
+            GlobalMethod::TwoPass if transmits => {
+                return Err(Error::invalid(
+                    format!("materials.{}", m.name),
+                    format!(
+                        "materials.{}: the two-pass method (Wallace et al. 1987) follows mirrors; transmission (transmittance, translucence) is Rushmeier & Torrance's: set global.method = \"rushmeier-torrance\"",
+                        m.name
+                    ),
+                ));
+            }
+            GlobalMethod::RushmeierTorrance
+                if m.transmittance.max_element() > 0.0 && m.ior.is_some() =>
+            {
+                return Err(Error::invalid(
+                    format!("materials.{}.ior", m.name),
+                    format!(
+                        "materials.{}.ior: Rushmeier & Torrance's panes are thin (light goes straight through): leave ior out",
+                        m.name
+                    ),
+                ));
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// The solution's radiance B/π anywhere on the scene's polygons.
+pub struct SolutionRadiance {
+    /// Per scene polygon, its elements.
+    of_polygon: Vec<Vec<u32>>,
+    outlines: Vec<Polygon>,
+    colors: Vec<Vec<Vec3>>,
+}
+
+impl SolutionRadiance {
+    pub fn new(scene: &Scene, solution: &Solution) -> SolutionRadiance {
+        let pieces =
+            display::element_polygons(scene, &solution.mesh, &solution.elements, solution.display);
+        let mut of_polygon = vec![Vec::new(); scene.polygons.len()];
+        let mut outlines = Vec::with_capacity(pieces.len());
+        let mut colors = Vec::with_capacity(pieces.len());
+        for (e, piece) in pieces.into_iter().enumerate() {
+            of_polygon[piece.polygon].push(e as u32);
+            let normal = scene.polygons[piece.polygon].normal;
+            outlines.push(Polygon {
+                vertices: piece
+                    .vertices
+                    .iter()
+                    .map(|v| Vertex {
+                        position: v.position,
+                        ..*v
+                    })
+                    .collect(),
+                normal,
+                material: 0,
+                object: 0,
+            });
+            colors.push(piece.colors);
+        }
+        SolutionRadiance {
+            of_polygon,
+            outlines,
+            colors,
+        }
+    }
+
+    /// Radiance leaving the front of polygon `polygon` at `position`.
+    pub fn at(&self, polygon: u32, position: DVec3) -> Vec3 {
+        let elements = &self.of_polygon[polygon as usize];
+        let Some(&e) = elements
+            .iter()
+            .find(|&&e| contains(&self.outlines[e as usize], position))
+            .or_else(|| {
+                // On an edge, where rounding leaves the point in no element: the
+                // nearest element by its first corner is close enough.
+                elements.iter().min_by(|&&a, &&b| {
+                    let d = |e: u32| {
+                        (self.outlines[e as usize].vertices[0].position - position).length()
+                    };
+                    d(a).total_cmp(&d(b))
+                })
+            })
+        else {
+            return Vec3::ZERO;
+        };
+        let outline = &self.outlines[e as usize];
+        let colors = &self.colors[e as usize];
+        let v = &outline.vertices;
+        match fan_weights(v.len(), |k| v[k].position, outline.normal, position) {
+            Some((i, w)) => {
+                (colors[0] * w[0] as f32 + colors[i] * w[1] as f32 + colors[i + 1] * w[2] as f32)
+                    .max(Vec3::ZERO)
+            }
+            None => colors[0],
+        }
+    }
+}
+
+/// The second pass over one solution.
+pub struct SecondPass {
+    traced: Arc<TracedScene>,
+    radiance: SolutionRadiance,
+    settings: GlobalSettings,
+    /// The lights the solution does not hold, added where rays land.
+    lit: Vec<bool>,
+}
+
+impl SecondPass {
+    pub fn new(
+        scene: &Scene,
+        solution: &Solution,
+        traced: Arc<TracedScene>,
+        settings: GlobalSettings,
+        lit: Vec<bool>,
+    ) -> SecondPass {
+        SecondPass {
+            traced,
+            radiance: SolutionRadiance::new(scene, solution),
+            settings,
+            lit,
+        }
+    }
+
+    /// ρ_s I(reflected) + τ_s I(transmitted) at a visible point of polygon
+    /// `polygon` seen along unit `incident` (eye to point), `normal` the shading
+    /// normal on the eye's side. Zero where the diffuse-specular mechanism is off.
+    pub fn specular(
+        &self,
+        scene: &Scene,
+        polygon: u32,
+        position: DVec3,
+        normal: DVec3,
+        incident: DVec3,
+        stream: u64,
+    ) -> Vec3 {
+        if !self.settings.mechanisms.diffuse_specular {
+            return Vec3::ZERO;
+        }
+        self.bounce(
+            scene,
+            polygon,
+            position,
+            normal,
+            incident,
+            1,
+            Vec3::ONE,
+            stream,
+        )
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn bounce(
+        &self,
+        scene: &Scene,
+        polygon: u32,
+        position: DVec3,
+        normal: DVec3,
+        incident: DVec3,
+        depth: u32,
+        weight: Vec3,
+        stream: u64,
+    ) -> Vec3 {
+        let material = &scene.materials[scene.polygons[polygon as usize].material];
+        let threshold = self.settings.threshold as f32;
+        let spawn = |k: Vec3| {
+            k.max_element() > 0.0
+                && (weight * k).max_element() >= threshold
+                && depth <= self.settings.depth
+        };
+        let mut radiance = Vec3::ZERO;
+        let (k_s, k_t) = (material.mirror, material.transmittance);
+        if spawn(k_s) {
+            let r = (incident - 2.0 * incident.dot(normal) * normal).normalize();
+            radiance += k_s * self.ray(scene, position, r, polygon, depth, weight * k_s, stream);
+        }
+        if spawn(k_t) {
+            radiance += k_t
+                * self.ray(
+                    scene,
+                    position,
+                    incident,
+                    polygon,
+                    depth,
+                    weight * k_t,
+                    stream,
+                );
+        }
+        radiance
+    }
+
+    /// What a ray from a specular surface brings back: the pass-1 radiance where it
+    /// lands, the lights the solution does not hold, and (specular-specular) what
+    /// a specular surface there sends on.
+    #[allow(clippy::too_many_arguments)]
+    fn ray(
+        &self,
+        scene: &Scene,
+        origin: DVec3,
+        direction: DVec3,
+        from: u32,
+        depth: u32,
+        weight: Vec3,
+        stream: u64,
+    ) -> Vec3 {
+        let Some(hit) =
+            self.traced
+                .closest(origin, direction, f64::INFINITY, Leaving::Polygon(from))
+        else {
+            return scene.render.background;
+        };
+        let Some(polygon) = hit.polygon else {
+            return Vec3::ZERO;
+        };
+        // Radiosity leaves the front only.
+        if direction.dot(hit.geometric_normal) >= 0.0 {
+            return Vec3::ZERO;
+        }
+        let to_eye = -direction;
+        let mut radiance = self.radiance.at(polygon, hit.position);
+        if self.lit.iter().any(|&l| l) {
+            let reflectance = scene.materials[hit.material].reflectance();
+            radiance += lights_at(
+                scene,
+                &self.traced,
+                hit.position,
+                hit.normal,
+                to_eye,
+                &reflectance,
+                hit.leaving(),
+                &self.lit,
+                stream,
+            );
+        }
+        if self.settings.mechanisms.specular_specular {
+            radiance += self.bounce(
+                scene,
+                polygon,
+                hit.position,
+                hit.normal,
+                direction,
+                depth + 1,
+                weight,
+                stream,
+            );
+        }
+        radiance
+    }
+}
