@@ -1,6 +1,8 @@
 //! The crate's layers, bottom to top: geometry and settings → the errors → output
 //! (images, files) → texture → scene → raster → shadow, shading, radiosity, media
-//! (siblings) → render → catalogue → the command line. A module names only modules below its
+//! (siblings) → global (ray tracing and the two-pass method's second pass, over
+//! shading's light model and radiosity's solution) → render → catalogue → the command
+//! line. A module names only modules below its
 //! own layer (and its own): read from the sources, every `crate::` path checked.
 
 use std::path::Path;
@@ -14,9 +16,10 @@ fn layer(module: &str) -> Option<u32> {
         "scene" => 4,
         "raster" => 5,
         "shadow" | "shading" | "radiosity" | "media" => 6,
-        "render" => 7,
-        "catalogue" => 8,
-        "cli" | "main" | "lib" => 9,
+        "global" => 7,
+        "render" => 8,
+        "catalogue" => 9,
+        "cli" | "main" | "lib" => 10,
         _ => return None,
     })
 }

@@ -14,6 +14,25 @@ reference held in tests/references/ for tests/flip_reference.rs:
     python3 tools/mitsuba_reference.py --quad --spp 4096 --self-check \
         --write tests/references/cornell-box-direct-mitsuba.pfm
 
+With --mirrors: the two-pass entry's scene, the box lit by its quad light plus the
+three perfect mirrors of algorithms/two-pass.toml (its polygon objects, read from the
+toml: a one-sided smooth `conductor` with material "none" and specular_reflectance the
+entry's `mirror`, 0.9), Mitsuba's path tracer (unbounded depth, Russian roulette only
+after 1000 bounces) against `render two-pass --supersample 4` with the entry's own
+mesh (35 mm elements, 140 mm patches; --element-size and --patch-size change it, as
+they change --global's 10 and 35). The reference held for it in tests/references/:
+
+    python3 tools/mitsuba_reference.py --mirrors --size 128 --spp 4096 --self-check \
+        --write tests/references/two-pass-mitsuba.pfm
+
+(about 2 x 7.5 minutes on 2 busy cores; --self-check FLIP ~0.012, most of it the
+ceiling's caustic, which a path tracer finds only by BSDF samples that hit the lamp
+in the top mirror.) To tell the mirrors' share of the error from plain radiosity's,
+compare the box without mirrors at the same mesh, size and spp:
+
+    python3 tools/mitsuba_reference.py --global --size 128 --spp 4096 \
+        --element-size 35 --patch-size 140
+
 All in Mitsuba's scalar_rgb variant with a box filter and a float32 film, at the same
 size, compared with NVIDIA's FLIP on the sRGB images. Not part of the test suite (it
 needs two large PyPI packages): run it by hand. --self-check renders the reference a
@@ -22,9 +41,9 @@ noise. --no-compare renders (and writes) the reference without running lumiere.
 
     python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba flip-evaluator numpy
     cargo build --release
-    /tmp/mi/bin/python tools/mitsuba_reference.py [--global | --quad] [--size 256] [--spp 1024]
+    /tmp/mi/bin/python tools/mitsuba_reference.py [--global | --quad | --mirrors] [--size 256] [--spp 1024]
 """
-import argparse, os, subprocess, tempfile, time
+import argparse, os, subprocess, tempfile, time, tomllib
 import numpy as np
 import mitsuba as mi
 import flip_evaluator as flip
@@ -58,6 +77,26 @@ def split_obj(path, folder):
             out.writelines("f " + " ".join(str(index[i]) for i in f) + "\n" for f in faces)
         files[name] = (file, material)
     return files
+
+
+def mirror_polygons(entry, folder):
+    """The entry's polygon objects (the two-pass mirrors), one OBJ each (a triangle fan
+    in the toml's vertex order, so the face normal, the mirror's front, is the same)
+    with its material's specular reflectance."""
+    with open(entry, "rb") as f:
+        toml = tomllib.load(f)
+    mirrors = []
+    for k, o in enumerate(toml["objects"]):
+        if o["shape"] != "polygon":
+            continue
+        material = toml["materials"][o["material"]]
+        assert set(material) == {"mirror"}, f"{o['name']}: a perfect mirror only ({material})"
+        file = os.path.join(folder, f"mirror{k}.obj")
+        with open(file, "w") as out:
+            out.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in o["vertices"])
+            out.writelines(f"f 1 {i} {i + 1}\n" for i in range(2, len(o["vertices"])))
+        mirrors.append((o["name"], file, material["mirror"]))
+    return mirrors
 
 
 def read_pfm(path):
@@ -94,6 +133,7 @@ def main():
     mode = args.add_mutually_exclusive_group()
     mode.add_argument("--global", dest="global_", action="store_true")
     mode.add_argument("--quad", action="store_true")
+    mode.add_argument("--mirrors", action="store_true")
     # With one emitter sample per camera sample, every camera sample places its own
     # stratified point on the quad: the shadow rays are spread as well as they can be.
     args.add_argument("--emitter-samples", type=int, default=1)
@@ -103,10 +143,17 @@ def main():
     args.add_argument("--no-compare", action="store_true")
     args.add_argument("--shadows", help="lumiere's method (default ray-cast, umbra-penumbra with --quad)")
     args.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="passed to lumiere")
+    args.add_argument("--element-size", help="lumiere's radiosity mesh (default: 10 with --global, the entry's with --mirrors)")
+    args.add_argument("--patch-size", help="lumiere's radiosity patches (default: 35 with --global, the entry's with --mirrors)")
     a = args.parse_args()
     mi.set_variant("scalar_rgb")
     folder = tempfile.mkdtemp()
-    if a.global_:
+    lit_by_quad = a.global_ or a.quad or a.mirrors
+    if a.global_ or a.mirrors:
+        # Unbounded paths, Russian roulette only after 1000 bounces (no path gets that
+        # far: the box is open to the front). Through a perfect mirror only BSDF samples
+        # find the lamp, and the path tracer weighs them fully (MIS gives emitter
+        # samples no share of a delta lobe): the mirrors' reflected light is unbiased.
         integrator = {"type": "path", "max_depth": -1, "rr_depth": 1000}
     else:
         # Light sampling alone: every surface is diffuse, so BSDF samples would only
@@ -125,19 +172,27 @@ def main():
                 "sampler": {"type": "stratified", "sample_count": a.spp, "seed": seed},
             },
         }
-        if not (a.global_ or a.quad):
+        if not lit_by_quad:
             s["lamp"] = {"type": "point", "position": [278.0, 548.6, 279.5],
                          "intensity": {"type": "rgb", "value": [228437.5, 161250.0, 53750.0]}}
         for name, (file, material) in split_obj("algorithms/models/cornell_box.obj", folder).items():
             s[name] = {"type": "obj", "filename": file, "face_normals": True,
                        "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": MATERIALS[material]}}}
-            if (a.global_ or a.quad) and name == "light":
+            if lit_by_quad and name == "light":
                 s[name]["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": [17.0, 12.0, 4.0]}}
+        if a.mirrors:
+            # A smooth conductor with material "none" (eta 0, k 1: Fresnel reflectance 1
+            # at every angle) scaled by specular_reflectance is a perfect mirror; it is
+            # one-sided, black from behind, like lumiere's mirrors.
+            for k, (_, file, reflectance) in enumerate(mirror_polygons("algorithms/two-pass.toml", folder)):
+                s[f"mirror{k}"] = {"type": "obj", "filename": file, "face_normals": True,
+                                   "bsdf": {"type": "conductor", "material": "none",
+                                            "specular_reflectance": {"type": "rgb", "value": reflectance}}}
         return mi.load_dict(s)
 
     start = time.perf_counter()
     reference = np.array(mi.render(scene(a.seed)), dtype=np.float32)
-    light = "" if a.global_ else f", {a.emitter_samples} emitter sample(s) per sample"
+    light = "" if a.global_ or a.mirrors else f", {a.emitter_samples} emitter sample(s) per sample"
     print(f"Mitsuba: {a.size} x {a.size}, {a.spp} spp{light}, seed {a.seed}, {time.perf_counter() - start:.1f} s")
     print(f"mean radiance, Mitsuba: {reference.mean(axis=(0, 1))}")
     if a.write:
@@ -150,13 +205,17 @@ def main():
         print(f"second render, seed {a.seed + 1}: {time.perf_counter() - start:.1f} s")
         print(f"FLIP (mean) between the two Mitsuba renders: {flip_mean(reference, again):.5f}")
         print(f"mean radiance, second render: {again.mean(axis=(0, 1))}")
+        np.save(os.path.join(folder, "mitsuba-second.npy"), again)
     np.save(os.path.join(folder, "mitsuba.npy"), reference)
     print(f"images in {folder}")
     if a.no_compare:
         return
     ours = os.path.join(folder, "lumiere.pfm")
-    if a.global_:
-        command = ["radiosity-gathering", "--element-size", "10", "--patch-size", "35"]
+    if a.global_ or a.mirrors:
+        command = ["two-pass" if a.mirrors else "radiosity-gathering"]
+        element, patch = (a.element_size, a.patch_size) if a.mirrors else (a.element_size or "10", a.patch_size or "35")
+        command += ["--element-size", element] if element else []
+        command += ["--patch-size", patch] if patch else []
     else:
         command = ["cornell-box" if a.quad else "cornell-box-point",
                    "--shadows", a.shadows or ("umbra-penumbra" if a.quad else "ray-cast")]
