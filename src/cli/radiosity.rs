@@ -55,6 +55,7 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
             let snapshot = Solution {
                 mesh: mesh.clone(),
                 elements: shown,
+                direct: None,
                 display: settings.display,
                 summary: String::new(),
             };

@@ -34,6 +34,10 @@ pub use shooting::{Shooting, Stop};
 pub struct Solution {
     pub mesh: Mesh,
     pub elements: Vec<Vec3>,
+    /// The part of each element's radiosity that came straight from the emitters
+    /// (ρ_e Σ_j F_ej E_j), for a second pass that computes direct light itself;
+    /// `None` after adaptive subdivision, which does not keep it.
+    pub direct: Option<Vec<Vec3>>,
     /// How the elements are drawn.
     pub display: Display,
     /// What the solve did, for the terminal: steps or sweeps, unshot fraction.
@@ -90,6 +94,45 @@ pub fn mesh(scene: &Scene, settings: &Settings) -> Result<Mesh> {
         ));
     }
     Ok(mesh)
+}
+
+impl Solution {
+    /// The solution without its direct part: what each element received after
+    /// more than one bounce (its emission kept), for a second pass that adds the
+    /// direct light itself. `None` if the solver did not keep the direct part.
+    pub fn indirect(&self) -> Option<Solution> {
+        let direct = self.direct.as_ref()?;
+        Some(Solution {
+            mesh: self.mesh.clone(),
+            elements: self
+                .elements
+                .iter()
+                .zip(direct)
+                .map(|(b, d)| (*b - *d).max(Vec3::ZERO))
+                .collect(),
+            direct: None,
+            display: self.display,
+            summary: format!("{}; drawn without its direct part", self.summary),
+        })
+    }
+}
+
+/// Per element, ρ_e Σ_j F_ej E_j over the emitting patches j, from its gathering row.
+fn direct_from_rows(mesh: &Mesh, rows: &[Vec<f32>]) -> Vec<Vec3> {
+    let emitters: Vec<usize> = (0..mesh.patches.len())
+        .filter(|&j| mesh.patches[j].emission.max_element() > 0.0)
+        .collect();
+    mesh.elements
+        .iter()
+        .zip(rows)
+        .map(|(e, row)| {
+            let gathered: Vec3 = emitters
+                .iter()
+                .map(|&j| mesh.patches[j].emission * row[j])
+                .sum();
+            mesh.patches[e.patch].reflectance * gathered
+        })
+        .collect()
 }
 
 /// The first pass's extension, when the scene's `[global]` method has one and the
@@ -182,8 +225,9 @@ pub fn solve(
                 mesh.elements.len(),
                 g.sweeps
             );
-            let (mesh, elements) = match settings.subdivision {
-                None => (mesh, g.elements),
+            let direct = direct_from_rows(&mesh, &g.element_factors);
+            let (mesh, elements, direct) = match settings.subdivision {
+                None => (mesh, g.elements, Some(direct)),
                 Some(s) => {
                     let r = subdivision::refine(mesh, g.elements, &g.patches, &estimator, s);
                     summary += &format!(
@@ -191,12 +235,13 @@ pub fn solve(
                         r.cut,
                         r.mesh.elements.len()
                     );
-                    (r.mesh, r.elements)
+                    (r.mesh, r.elements, None)
                 }
             };
             Ok(Solution {
                 display: settings.display,
                 elements: elements.iter().map(|b| b.as_vec3()).collect(),
+                direct,
                 mesh,
                 summary,
             })
@@ -218,6 +263,7 @@ pub fn solve(
             Ok(Solution {
                 display: settings.display,
                 elements: state.displayed(&mesh, settings.ambient),
+                direct: Some(state.direct.clone()),
                 mesh,
                 summary,
             })

@@ -28,6 +28,11 @@ pub struct Shooting {
     pub elements: Vec<Vec3>,
     /// Unshot radiosity of every patch.
     pub unshot: Vec<Vec3>,
+    /// Per element, the radiosity it received straight from the emitters' own
+    /// emission (their first shots): the direct part of `elements`, less E.
+    pub direct: Vec<Vec3>,
+    /// Per patch, whether its emission has been shot.
+    emission_shot: Vec<bool>,
     /// Steps taken.
     pub steps: usize,
 }
@@ -50,6 +55,8 @@ impl Shooting {
                 .map(|e| mesh.patches[e.patch].emission)
                 .collect(),
             unshot: mesh.patches.iter().map(|p| p.emission).collect(),
+            direct: vec![Vec3::ZERO; mesh.elements.len()],
+            emission_shot: vec![false; mesh.patches.len()],
             steps: 0,
         }
     }
@@ -88,6 +95,13 @@ impl Shooting {
         };
         let shooter = &mesh.patches[i];
         let shot = self.unshot[i];
+        // Its first shot carries its emission: what that brings is direct light.
+        let emitted = if self.emission_shot[i] {
+            Vec3::ZERO
+        } else {
+            shooter.emission
+        };
+        self.emission_shot[i] = true;
         let factors = estimator.factors(shooter.centre, shooter.normal, elements, &|e| {
             elements.patch[e] == i
         });
@@ -97,8 +111,10 @@ impl Shooting {
             }
             let element = &mesh.elements[e];
             let receiver = &mesh.patches[element.patch];
-            let delta = receiver.reflectance * shot * (f * shooter.area / element.area) as f32;
+            let spread = (f * shooter.area / element.area) as f32;
+            let delta = receiver.reflectance * shot * spread;
             self.elements[e] += delta;
+            self.direct[e] += receiver.reflectance * emitted * spread;
             self.unshot[element.patch] += delta * (element.area / receiver.area) as f32;
         }
         self.unshot[i] = Vec3::ZERO;

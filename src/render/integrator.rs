@@ -39,7 +39,10 @@ impl Integrator {
 
     /// Per light, whether shading adds it directly (and so whether it is shadowed).
     pub fn direct_lights(&self, scene: &Scene) -> Vec<bool> {
-        lit_directly(scene, matches!(self, Integrator::Radiosity(..)))
+        lit_directly(
+            scene,
+            matches!(self, Integrator::Radiosity(..)) && !exact_direct(scene),
+        )
     }
 
     /// Whether Gouraud shading must interpolate each direct light on its own: when
@@ -205,6 +208,15 @@ pub fn lit_directly(scene: &Scene, radiosity: bool) -> Vec<bool> {
         .iter()
         .map(|light| !(radiosity && matches!(light, Light::Polygon(_))))
         .collect()
+}
+
+/// Whether the second pass computes the direct light of every light itself (and
+/// the solution is drawn with its indirect part only).
+pub fn exact_direct(scene: &Scene) -> bool {
+    scene.radiosity.is_some()
+        && scene.global.as_ref().is_some_and(|g| {
+            g.exact_direct && g.method != crate::settings::GlobalMethod::RayTracing
+        })
 }
 
 /// A solution's elements as the scan-line pass draws them.

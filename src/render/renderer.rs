@@ -9,7 +9,7 @@
 
 use super::capture::capture_cube;
 use super::frame::render_frame;
-use super::integrator::{Integrator, lit_directly};
+use super::integrator::{Integrator, exact_direct, lit_directly};
 use crate::global::TracedScene;
 use crate::global::two_pass::{self, SecondPass};
 use crate::output::{Buffer, Image};
@@ -200,6 +200,10 @@ impl Renderer {
     /// Hands the renderer a radiosity solution of its scene (solved elsewhere, with
     /// progress shown, say), so that it is not solved again.
     pub fn set_radiosity_solution(&mut self, solution: Arc<Solution>) {
+        let solution = match (exact_direct(&self.scene), solution.indirect()) {
+            (true, Some(indirect)) => Arc::new(indirect),
+            _ => solution,
+        };
         *self.radiosity.lock().expect("no poisoned lock") = Some(solution);
         *self.second_pass.lock().expect("no poisoned lock") = None;
     }
@@ -207,7 +211,10 @@ impl Renderer {
     /// Refuses, before any work, a shadow method that cannot shadow one of the
     /// lights the frame shadows.
     pub fn check(&self) -> Result<()> {
-        let direct = lit_directly(&self.scene, self.scene.radiosity.is_some());
+        let direct = lit_directly(
+            &self.scene,
+            self.scene.radiosity.is_some() && !exact_direct(&self.scene),
+        );
         for (index, _) in direct.iter().enumerate().filter(|(_, d)| **d) {
             shadow::check(&self.scene, index, self.scene.shadows.method)?;
         }
@@ -254,9 +261,9 @@ impl Renderer {
                     if let Some(g) = second_pass {
                         two_pass::check(&self.scene, g.method)?;
                     }
-                    let solution =
-                        Arc::new(radiosity::solve(&self.scene, settings, &mut |_, _| {})?);
+                    let solution = radiosity::solve(&self.scene, settings, &mut |_, _| {})?;
                     self.built_radiosity.fetch_add(1, Ordering::Relaxed);
+                    let solution = Arc::new(self.drawn(solution)?);
                     *slot = Some(solution.clone());
                     solution
                 }
@@ -271,7 +278,7 @@ impl Renderer {
             None => {
                 // Rays read the solution on its mesh: spheres stay polygons here.
                 let traced = self.traced_scene(false);
-                let lit = lit_directly(&self.scene, true);
+                let lit = lit_directly(&self.scene, !exact_direct(&self.scene));
                 let second = Arc::new(SecondPass::new(
                     &self.scene,
                     &solution,
@@ -284,6 +291,19 @@ impl Renderer {
             }
         };
         Ok(Integrator::Radiosity(solution, Some(second)))
+    }
+
+    /// The solution as frames draw it: without its direct part when the second pass
+    /// computes direct light exactly.
+    fn drawn(&self, solution: radiosity::Solution) -> Result<radiosity::Solution> {
+        if !exact_direct(&self.scene) {
+            return Ok(solution);
+        }
+        solution.indirect().ok_or_else(|| {
+            Error::Radiosity(
+                "global.exact_direct needs the solution's direct part, which adaptive subdivision does not keep: leave `subdivide` out".into(),
+            )
+        })
     }
 
     /// The shadow pre-passes of the lights `direct` selects (`None` for the others

@@ -127,6 +127,14 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         .as_ref()
         .map(super::global_settings::from_file)
         .transpose()?;
+    if let Some(g) = &global {
+        ensure_valid!(
+            g.method != crate::settings::GlobalMethod::RayTracing || render.supersample == 1,
+            "render.supersample",
+            "render.supersample: ray tracing antialiases by Whitted's adaptive subdivision (global.subdivisions); leave supersample at 1, got {}",
+            render.supersample
+        );
+    }
     let mut builder = Builder {
         eye: camera.eye,
         ..Default::default()
