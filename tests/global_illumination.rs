@@ -768,3 +768,60 @@ fn the_reflected_spot_is_lit_by_the_mirrored_lamp_times_the_mirror_reflectance()
         assert_eq!(checked, 64);
     }
 }
+
+/// `lumiere render` with overrides of `entry`: its exit code and standard error.
+fn render_cli(entry: &str, sets: &[&str]) -> (i32, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let mut args = vec!["render", entry, "--test-size", "-o", "out.png"];
+    for s in sets {
+        args.extend(["--set", s]);
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(&args)
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(!dir.path().join("out.png").exists() || out.status.success());
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn bad_global_illumination_input_is_refused_in_one_line() {
+    let cases: [(&str, &[&str], &[&str]); 5] = [
+        (
+            "rushmeier-torrance",
+            &["materials.pane.diffuse=[0.2, 0.2, 0.2]"],
+            &["material pane", "exceeds 1"],
+        ),
+        (
+            "two-pass",
+            &["materials.mirror.translucence=[0.05, 0.05, 0.05]"],
+            &["materials.mirror", "rushmeier-torrance"],
+        ),
+        (
+            "rushmeier-torrance",
+            &["materials.pane.ior=1.5"],
+            &["materials.pane.ior", "thin"],
+        ),
+        (
+            "two-pass",
+            &["global.window_depth=9"],
+            &["global.window_depth", "at most 4"],
+        ),
+        ("two-pass", &["radiosity.solver=shooting"], &["gathering"]),
+    ];
+    for (entry, sets, words) in cases {
+        let (code, stderr) = render_cli(entry, sets);
+        assert_ne!(code, 0, "{entry} {sets:?}");
+        assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+        for w in words {
+            assert!(
+                stderr.contains(w),
+                "{entry} {sets:?}: `{w}` not in {stderr}"
+            );
+        }
+    }
+}

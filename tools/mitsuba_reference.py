@@ -25,13 +25,19 @@ they change --global's 10 and 35). The reference held for it in tests/references
     python3 tools/mitsuba_reference.py --mirrors --size 128 --spp 4096 --self-check \
         --write tests/references/two-pass-mitsuba.pfm
 
-(about 2 x 7.5 minutes on 2 busy cores; --self-check FLIP ~0.012, most of it the
-ceiling's caustic, which a path tracer finds only by BSDF samples that hit the lamp
-in the top mirror.) To tell the mirrors' share of the error from plain radiosity's,
-compare the box without mirrors at the same mesh, size and spp:
+(7.5 minutes a render on 2 busy cores, twice with --self-check. Its own noise, FLIP
+between two seeds, is 0.018, highest on the ceiling's caustic, which a path tracer
+finds only by BSDF samples that hit the lamp in the top mirror; 256 spp gives 0.049,
+so 0.01 would take about 5x the samples.) To tell the mirrors' share of the error
+from plain radiosity's, compare the box without mirrors at the same mesh, size and
+spp:
 
     python3 tools/mitsuba_reference.py --global --size 128 --spp 4096 \
         --element-size 35 --patch-size 140
+
+(At 128 x 128: two-pass 0.080 against the box without mirrors' 0.070 at the entry's
+mesh, 0.035 against 0.032 at --element-size 10 --patch-size 35: at the entry's mesh
+the mirrors' share is mostly the 35 mm elements' blur of the caustics' sharp edges.)
 
 All in Mitsuba's scalar_rgb variant with a box filter and a float32 film, at the same
 size, compared with NVIDIA's FLIP on the sRGB images. Not part of the test suite (it

@@ -13,6 +13,8 @@ test suite (it needs the Debian package povray): run it by hand.
     python3 tools/povray_cornell.py --sdl scene.pov          # only write the SDL
     python3 tools/povray_cornell.py --render [--size 256]    # render once, compare with lumiere
     python3 tools/povray_cornell.py --time [--sizes 256 512] [--runs 3]
+    python3 tools/povray_cornell.py --radiosity --time       # every bounce: time, then quality
+    python3 tools/povray_cornell.py --radiosity --render     # every bounce: quality only
 
 How lumiere's units are carried over (POV-Ray's own conventions in brackets):
 
@@ -82,6 +84,36 @@ exact. Without area_illumination the face is at 0.40 (the centre-point lighting 
 grazing angle, times the same fraction). The whole image is 0.98, mostly that face.
 `--span corners` moves the lit regions by -1.2% (floor) to +0.3% (walls); `adaptive 0`
 leaves the means as they are and casts 6.6 times fewer shadow rays.
+
+--radiosity: every diffuse bounce, against `cornell-box-global`. The direct light is
+the area light above, unchanged; the indirect light is POV-Ray's radiosity:
+`global_settings { radiosity { pretrace_start 0.08 pretrace_end 0.005 count 600
+nearest_count 10 error_bound 0.5 recursion_limit 10 low_error_factor 0.5
+gray_threshold 0 minimum_reuse 0.015 brightness 1 adc_bailout 0.005 normal off
+media off always_sample off } }` (RADIOSITY; --count, --recursion-limit and
+--error-bound override three of them).
+
+* Units of the indirect light [a radiosity sample is the mean of the radiance its
+  `count` rays bring back, the rays cosine-distributed over the hemisphere, so it
+  is E / pi; the surface then returns pigment * diffuse * brightness * that, no
+  1/pi]: Kd E / pi is the Lambertian radiance, so with `diffuse 1` and `brightness
+  1` the indirect light is in lumiere's units with nothing rescaled (a factor pi
+  either way would show as 3.14 or 0.32). Checked at 128 x 128 against the Mitsuba
+  reference minus lumiere's exact direct image: POV-Ray's indirect part (its
+  radiosity image minus its direct-only image) is (0.95, 0.98, 1.00) of it (R, G, B),
+  recursion_limit 10; 3 gives (0.86, 0.90, 0.95), 6 gives the same as 10 to 0.3%.
+* The lamp: its `emission` would be gathered by radiosity rays on top of the
+  light_source's direct light (counted twice), so the emitting mesh is
+  `no_radiosity`, and a black copy (lumiere's Kd 0), `no_image no_shadow`, stands in
+  for it for those rays (otherwise they would go through to the ceiling behind).
+* Pixels: `--time` times 512 x 512 with +AM1 +R2 (a 2 x 2 grid plus the centre ray:
+  5 rays, box-like) against `render cornell-box-global --supersample 2`, 3 runs
+  each, interleaved (POV-Ray, lumiere, POV-Ray, ...), whole-process wall clock,
+  medians. Then both at 256 x 256, POV-Ray +R4 (17 rays) and lumiere --supersample
+  4, against Mitsuba's path-traced /tmp/cornell-global-4096.pfm (or -1024.pfm):
+  FLIP (mitsuba_reference.flip_mean, sRGB LDR) and mean radiance without the lamp.
+
+RADIOSITY_FIGURES
 """
 import argparse, math, os, re, statistics, struct, subprocess, sys, tomllib, zlib
 from pathlib import Path
@@ -173,7 +205,9 @@ def vec(p, flip=True):
 
 
 def sdl(width, height, samples=8, span="cells", jitter=True, adaptive=None,
-        area_illumination=True, fade_distance=1.0):
+        area_illumination=True, fade_distance=1.0, radiosity=None):
+    """radiosity: None (direct light only) or a dict of radiosity {} settings (see
+    RADIOSITY): every diffuse bounce, and the lamp made black to radiosity rays."""
     objects, mtllib = read_obj(ROOT / "algorithms/models/cornell_box.obj")
     materials = read_mtl(ROOT / "algorithms/models" / mtllib)
     cam = camera_of(ROOT / "algorithms/cornell-box.toml")
@@ -184,9 +218,12 @@ def sdl(width, height, samples=8, span="cells", jitter=True, adaptive=None,
     out = [
         "// Written by tools/povray_cornell.py from algorithms/models/cornell_box.obj,",
         "// its .mtl and algorithms/cornell-box.toml. lumiere's units; z negated",
-        "// (POV-Ray is left-handed). Direct light only.",
+        "// (POV-Ray is left-handed). " + ("Direct light from the area light, every diffuse"
+                                           " bounce by radiosity." if radiosity else "Direct light only."),
         "#version 3.7;",
-        "global_settings { assumed_gamma 1.0 ambient_light rgb 0 max_trace_level 2 }",
+        "global_settings { assumed_gamma 1.0 ambient_light rgb 0 max_trace_level 2"
+        + ("" if not radiosity else "\n  radiosity {\n" + "".join(
+            f"    {k} {v}\n" for k, v in radiosity.items()) + "  }\n") + " }",
         "background { rgb 0 }",
         "camera {",
         "  perspective",
@@ -231,6 +268,15 @@ def sdl(width, height, samples=8, span="cells", jitter=True, adaptive=None,
             kd = m["Ke"]
             texture = (f"  texture {{ pigment {{ rgb <{kd[0]:g}, {kd[1]:g}, {kd[2]:g}> }} "
                        "finish { ambient 0 diffuse 0 emission 1 } }\n  no_shadow")
+            if radiosity:
+                # The emission would be gathered by radiosity rays as well as shot by
+                # the light_source: the lamp is no_radiosity, and a black copy (lumiere's
+                # Kd 0), no_image, stands in for it so that those rays do not go through
+                # to the ceiling above.
+                texture += "\n  no_radiosity"
+                out += [f"// {name}: {material}, black, for radiosity rays only", "mesh {", *tris,
+                        "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 emission 0 } }",
+                        "  no_image no_shadow no_reflection", "}"]
         else:
             kd = m["Kd"]
             texture = (f"  texture {{ pigment {{ rgb <{kd[0]:g}, {kd[1]:g}, {kd[2]:g}> }} "
@@ -324,14 +370,14 @@ def read_pfm(path):
 # ---------------------------------------------------------------- running
 
 
-def povray_command(pov, png, size, threads=2, aa=True, exact16=False):
+def povray_command(pov, png, size, threads=2, aa=True, exact16=False, aa_depth=4):
     width = size * 4 if exact16 else size
     cmd = ["povray", f"+I{pov}", f"+O{png}", f"+W{width}", f"+H{width}",
            "+FN16", "File_Gamma=1.0", "-D", "-P", "-UA", f"+WT{threads}"]
     if exact16 or not aa:
         cmd.append("-A")
     else:
-        cmd += ["+A0.0", "+AM1", "+R4", "-J"]
+        cmd += ["+A0.0", "+AM1", f"+R{aa_depth}", "-J"]
     return cmd
 
 
@@ -517,6 +563,104 @@ def time_all(args):
     print(f"load average after: {os.getloadavg()}")
 
 
+# ---------------------------------------------------------------- radiosity (--radiosity)
+
+# POV-Ray 3.7's radiosity {} for every diffuse bounce (see the docstring). Depth-0
+# samples shoot `count` cosine-distributed rays; a sample is reused within the
+# error_bound (tightened by low_error_factor in the pretrace) of its nearest_count
+# neighbours; recursion_limit bounces of radiosity rays; gray_threshold 0 keeps the
+# colour bleeding; brightness 1: the gathered value is used as it is (lumiere's units).
+RADIOSITY = {"pretrace_start": 0.08, "pretrace_end": 0.005, "count": 600, "nearest_count": 10,
+             "error_bound": 0.5, "recursion_limit": 10, "low_error_factor": 0.5,
+             "gray_threshold": 0, "minimum_reuse": 0.015, "brightness": 1, "adc_bailout": 0.005,
+             "normal": "off", "media": "off", "always_sample": "off"}
+REFERENCES = [Path("/tmp/cornell-global-4096.pfm"), Path("/tmp/cornell-global-1024.pfm")]
+
+
+def lumiere_global_command(size, supersample, out):
+    return [str(LUMIERE), "render", "cornell-box-global", "--width", str(size), "--height", str(size),
+            "--supersample", str(supersample), "-o", str(out)]
+
+
+def radiosity_scene(args, size):
+    WORK.mkdir(parents=True, exist_ok=True)
+    pov = WORK / f"cornell_radiosity_{args.tag}_{size}.pov"
+    settings = dict(RADIOSITY, count=args.count, recursion_limit=args.recursion_limit,
+                    error_bound=args.error_bound)
+    pov.write_text(sdl(size, size, samples=args.samples, span=args.span, jitter=not args.no_jitter,
+                       adaptive=args.adaptive, area_illumination=not args.no_area_illumination,
+                       radiosity=settings))
+    return pov
+
+
+def quality(args, size=256):
+    """POV-Ray radiosity (4 x 4 AA) and lumiere's cornell-box-global (--supersample 4)
+    against the Mitsuba path-traced reference: FLIP and mean radiance ratios."""
+    sys.path.insert(0, str(ROOT / "tools"))
+    from mitsuba_reference import flip_mean
+    ref_path = next((p for p in REFERENCES if p.exists()), None)
+    if ref_path is None:
+        print("no Mitsuba reference in", [str(p) for p in REFERENCES])
+        return
+    ref = read_pfm(ref_path)
+    if ref.shape[0] != size:
+        sys.exit(f"{ref_path} is {ref.shape[0]} x {ref.shape[1]}, not {size} x {size}")
+    pov = radiosity_scene(args, size)
+    png = WORK / f"povray_radiosity_{args.tag}_{size}_aa4.png"
+    cmd = povray_command(pov, png, size, args.threads, aa_depth=4)
+    print(f"\nquality at {size} x {size} against {ref_path}\n$", " ".join(cmd), flush=True)
+    seconds, _, cpu, err = timed(cmd, WORK / f"povray_radiosity_{args.tag}_{size}_aa4.log")
+    print(f"  POV-Ray: {seconds:.2f} s wall, {cpu:.2f} s CPU, {povray_stats(err)}")
+    p = povray_image(png, False)
+    lum = WORK / f"lumiere_global_{size}_ss4.pfm"
+    cmd = lumiere_global_command(size, 4, lum)
+    print("$", " ".join(cmd), flush=True)
+    seconds, _, cpu, _ = timed(cmd, WORK / f"lumiere_global_{size}_ss4.log")
+    print(f"  lumiere: {seconds:.2f} s wall, {cpu:.2f} s CPU")
+    l = read_pfm(lum)
+    # Means without the lamp (clipped to 1 in POV-Ray's PNG): pixels where the
+    # reference or lumiere exceed 1, grown by one pixel.
+    lamp = (ref.max(axis=2) > 1.0) | (l.max(axis=2) > 1.0)
+    lamp[1:] |= lamp[:-1].copy(); lamp[:-1] |= lamp[1:].copy()
+    lamp[:, 1:] |= lamp[:, :-1].copy(); lamp[:, :-1] |= lamp[:, 1:].copy()
+    keep = ~lamp
+    r = ref[keep].mean(axis=0)
+    write_png8(WORK / f"radiosity_side_by_side_{size}.png",
+               np.concatenate([srgb(p), srgb(l), srgb(ref)], axis=1))
+    print(f"  reference mean radiance without the lamp: ({r[0]:.4f}, {r[1]:.4f}, {r[2]:.4f})")
+    for who, img in (("POV-Ray radiosity, 4 x 4 AA", p), ("lumiere cornell-box-global, ss 4", l)):
+        m = img[keep].mean(axis=0)
+        print(f"  {who:34s} FLIP {flip_mean(ref, img):.4f}  mean ({m[0]:.4f}, {m[1]:.4f}, {m[2]:.4f})"
+              f"  / reference R {m[0] / r[0]:.4f} G {m[1] / r[1]:.4f} B {m[2] / r[2]:.4f}"
+              f" sum {m.sum() / r.sum():.4f}", flush=True)
+    print(f"  images: {WORK / f'radiosity_side_by_side_{size}.png'} (POV-Ray | lumiere | Mitsuba, sRGB)")
+
+
+def time_radiosity(args, size=512):
+    """POV-Ray radiosity with 2 x 2 AA and lumiere's cornell-box-global with
+    --supersample 2, interleaved run by run, whole-process wall clock."""
+    print(f"load average before: {os.getloadavg()}, {os.cpu_count()} CPUs", flush=True)
+    pov = radiosity_scene(args, size)
+    lum_cmd = lumiere_global_command(size, 2, WORK / f"lumiere_global_{size}_ss2.pfm")
+    rows = {"POV-Ray": [], "lumiere": []}
+    for run in range(args.runs):
+        pov_cmd = povray_command(pov, WORK / f"povray_radiosity_{args.tag}_{size}_aa2.png", size,
+                                 args.threads, aa_depth=2)
+        for who, cmd in (("POV-Ray", pov_cmd), ("lumiere", lum_cmd)):
+            if run == 0:
+                print("$", " ".join(cmd), flush=True)
+            seconds, rss, cpu, err = timed(cmd, WORK / f"{who}_radiosity_{size}_run{run}.log")
+            rows[who].append((seconds, rss, cpu, os.getloadavg()[0]))
+            extra = povray_stats(err) if who == "POV-Ray" else ""
+            print(f"  {who} run {run + 1}: {seconds:.2f} s wall, {cpu:.2f} s CPU, {rss:.1f} MiB, "
+                  f"load {rows[who][-1][3]:.2f} {extra}", flush=True)
+    for who in rows:
+        summary(who, size, rows[who])
+    a, b = (statistics.median(r[0] for r in rows[k]) for k in ("POV-Ray", "lumiere"))
+    print(f"median wall clock POV-Ray / lumiere at {size} x {size}: {a / b:.1f}")
+    print(f"load average after: {os.getloadavg()}", flush=True)
+
+
 def main():
     a = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -537,9 +681,24 @@ def main():
     a.add_argument("--lumiere-shadows", default="ray-cast",
                    help="lumiere's shadow method (ray-cast: 8 x 8 light samples, as POV-Ray's; umbra-penumbra: exact)")
     a.add_argument("--tag", default="default", help="name of this variant's files in /tmp/povray_cornell")
+    a.add_argument("--radiosity", action="store_true",
+                   help="every diffuse bounce by POV-Ray's radiosity: with --time, time it at 512 x 512 "
+                        "(2 x 2 AA) against lumiere's cornell-box-global, interleaved, then measure both "
+                        "at 256 x 256 (4 x 4) against the Mitsuba reference; with --render only the latter")
+    a.add_argument("--count", type=int, default=RADIOSITY["count"], help="radiosity count")
+    a.add_argument("--recursion-limit", type=int, default=RADIOSITY["recursion_limit"])
+    a.add_argument("--error-bound", type=float, default=RADIOSITY["error_bound"])
     args = a.parse_args()
     LUMIERE_SHADOWS[0] = args.lumiere_shadows
-    if args.sdl:
+    if args.radiosity:
+        if args.sdl:
+            text = radiosity_scene(args, args.size).read_text()
+            sys.stdout.write(text) if args.sdl == "-" else Path(args.sdl).write_text(text)
+            return
+        if args.time:
+            time_radiosity(args, 512)
+        quality(args, 256)
+    elif args.sdl:
         text = sdl(args.size, args.size, samples=args.samples, span=args.span, jitter=not args.no_jitter,
                    adaptive=args.adaptive, area_illumination=not args.no_area_illumination)
         sys.stdout.write(text) if args.sdl == "-" else Path(args.sdl).write_text(text)

@@ -209,7 +209,8 @@ impl Renderer {
     }
 
     /// Refuses, before any work, a shadow method that cannot shadow one of the
-    /// lights the frame shadows.
+    /// lights the frame shadows (and, under the two-pass methods, materials their
+    /// first pass cannot carry).
     pub fn check(&self) -> Result<()> {
         let direct = lit_directly(
             &self.scene,
@@ -217,6 +218,11 @@ impl Renderer {
         );
         for (index, _) in direct.iter().enumerate().filter(|(_, d)| **d) {
             shadow::check(&self.scene, index, self.scene.shadows.method)?;
+        }
+        if let Some(g) = &self.scene.global
+            && g.method != GlobalMethod::RayTracing
+        {
+            two_pass::check(&self.scene, g.method)?;
         }
         Ok(())
     }
