@@ -165,11 +165,7 @@ impl Hemicube {
             .filter_map(|r| {
                 let polygon = &receivers.polygons[r];
                 let eye: Vec<DVec3> = polygon.positions().map(|p| view.to_eye(p)).collect();
-                // Trivial reject: every corner outside one frustum plane.
-                if frustum
-                    .iter()
-                    .any(|f| eye.iter().all(|e| f.truncate().dot(*e) + f.w < 0.0))
-                {
+                if View::rejects(&frustum, &eye) {
                     return None;
                 }
                 let id = if receivers.faces(r, view.eye) {

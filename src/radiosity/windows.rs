@@ -291,10 +291,7 @@ impl Windows {
                 let polygon = &receivers.polygons[r];
                 let mut points: Vec<DVec3> = polygon.positions().collect();
                 let eye: Vec<DVec3> = points.iter().map(|&p| view.to_eye(p)).collect();
-                if frustum
-                    .iter()
-                    .any(|f| eye.iter().all(|e| f.truncate().dot(*e) + f.w < 0.0))
-                {
+                if View::rejects(&frustum, &eye) {
                     return None;
                 }
                 if let Some((q, m)) = keep {

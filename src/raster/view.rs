@@ -70,6 +70,14 @@ impl View {
         (self.eye, self.ray(x, y) / self.focal)
     }
 
+    /// Whether eye-space points lie all outside one plane of `frustum` (this view's
+    /// `frustum()`, computed once by the caller): the trivial reject of a polygon.
+    pub fn rejects(frustum: &[DVec4; 5], eye: &[DVec3]) -> bool {
+        frustum
+            .iter()
+            .any(|f| eye.iter().all(|e| f.truncate().dot(*e) + f.w < 0.0))
+    }
+
     /// The view frustum as eye-space half-spaces a·p + d ≥ 0: near, left, right, top,
     /// bottom. The side planes pass through the eye, so clipping against them in eye
     /// space is exact.
