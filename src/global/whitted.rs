@@ -62,7 +62,9 @@ pub fn reflected_direction(v: DVec3, n: DVec3) -> DVec3 {
 pub fn refracted_direction(v: DVec3, n: DVec3, k_n: f64) -> Option<DVec3> {
     let v1 = v / v.dot(n).abs();
     let radicand = k_n * k_n * v1.length_squared() - (v1 + n).length_squared();
-    if radicand <= 0.0 {
+    // Not positive (or not a number, for a ray exactly in the surface): no
+    // transmitted ray.
+    if radicand.is_nan() || radicand <= 0.0 {
         return None;
     }
     let k_f = 1.0 / radicand.sqrt();
@@ -149,7 +151,13 @@ impl<'a> Whitted<'a> {
         // Normals on the side the ray comes from.
         let front = direction.dot(hit.geometric_normal) < 0.0;
         let side = if front { 1.0 } else { -1.0 };
-        let n = hit.normal * side;
+        // An interpolated normal can face away from the ray near a smooth mesh's
+        // silhouette, where Whitted's V' = V/|V·N| would break the mirror and Snell
+        // laws: the geometric normal is taken there.
+        let n = match hit.normal * side {
+            n if n.dot(direction) < 0.0 => n,
+            _ => hit.geometric_normal * side,
+        };
         let to_eye = -direction;
         let reflectance = reflectance_at(self.scene, hit, to_eye);
         let mut radiance = self.settings.ambient * reflectance.diffuse;
