@@ -169,3 +169,53 @@ fn the_two_pass_mirror_box_matches_a_path_tracer() {
         "FLIP without the mirrors {plain:.5}"
     );
 }
+
+/// The diffuse Cornell box, every bounce, against Mitsuba's path tracer, held in
+/// tests/references/cornell-box-global-mitsuba.pfm (`tools/mitsuba_reference.py
+/// --global --size 256 --spp 4096 --seed 7`; a 1024-spp render is FLIP 0.0094 from
+/// it). The two-pass way with exact direct light (`cornell-box-global`) measures
+/// 0.050; the issue asked 0.03, which the 35 mm mesh of the indirect light does not
+/// give (see the README). Radiosity alone on the same mesh measures 0.070.
+const GLOBAL_REFERENCE: &str = "tests/references/cornell-box-global-mitsuba.pfm";
+
+fn global_flip(entry: &str) -> f64 {
+    let reference = output::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(GLOBAL_REFERENCE))
+        .unwrap_or_else(|e| panic!("{}", common::error_line(&e)));
+    assert_eq!((reference.width, reference.height), (256, 256));
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("flip-{entry}.pfm"));
+    let run = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args([
+            "render",
+            entry,
+            "--supersample",
+            "4",
+            "--width",
+            "256",
+            "--height",
+            "256",
+        ])
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .expect("running lumiere");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let image = output::load(&out).unwrap_or_else(|e| panic!("{}", common::error_line(&e)));
+    let mean = flip::mean(&reference, &image);
+    eprintln!("{entry}: FLIP {mean:.5} against Mitsuba's path tracer");
+    mean
+}
+
+#[test]
+fn exact_direct_light_brings_the_global_cornell_box_closer_to_a_path_tracer() {
+    let exact = global_flip("cornell-box-global");
+    assert!(exact < 0.055, "cornell-box-global: FLIP {exact:.5}");
+    let meshed = global_flip("radiosity-shooting");
+    assert!(
+        meshed > exact + 0.015,
+        "radiosity-shooting {meshed:.5} against {exact:.5}"
+    );
+}
