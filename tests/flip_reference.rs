@@ -126,11 +126,14 @@ fn sampled_soft_shadows_against_mitsuba() {
 const TWO_PASS_REFERENCE: &str = "tests/references/two-pass-mitsuba.pfm";
 const TWO_PASS_MAX_FLIP: f64 = 0.08;
 
-fn two_pass_flip(entry: &str) -> f64 {
-    let reference = output::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(TWO_PASS_REFERENCE))
+/// FLIP of `lumiere render ENTRY --supersample 4` at the held reference's size
+/// against it (`reference`, a path under the crate).
+fn entry_flip(entry: &str, reference: &str, size: u32) -> f64 {
+    let reference = output::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(reference))
         .unwrap_or_else(|e| panic!("{}", common::error_line(&e)));
-    assert_eq!((reference.width, reference.height), (128, 128));
+    assert_eq!((reference.width, reference.height), (size, size));
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("flip-{entry}.pfm"));
+    let size = size.to_string();
     let run = Command::new(env!("CARGO_BIN_EXE_lumiere"))
         .args([
             "render",
@@ -138,9 +141,9 @@ fn two_pass_flip(entry: &str) -> f64 {
             "--supersample",
             "4",
             "--width",
-            "128",
+            &size,
             "--height",
-            "128",
+            &size,
         ])
         .arg("-o")
         .arg(&out)
@@ -155,6 +158,10 @@ fn two_pass_flip(entry: &str) -> f64 {
     let mean = flip::mean(&reference, &image);
     eprintln!("{entry}: FLIP {mean:.5} against Mitsuba's path tracer");
     mean
+}
+
+fn two_pass_flip(entry: &str) -> f64 {
+    entry_flip(entry, TWO_PASS_REFERENCE, 128)
 }
 
 #[test]
@@ -179,34 +186,7 @@ fn the_two_pass_mirror_box_matches_a_path_tracer() {
 const GLOBAL_REFERENCE: &str = "tests/references/cornell-box-global-mitsuba.pfm";
 
 fn global_flip(entry: &str) -> f64 {
-    let reference = output::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(GLOBAL_REFERENCE))
-        .unwrap_or_else(|e| panic!("{}", common::error_line(&e)));
-    assert_eq!((reference.width, reference.height), (256, 256));
-    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("flip-{entry}.pfm"));
-    let run = Command::new(env!("CARGO_BIN_EXE_lumiere"))
-        .args([
-            "render",
-            entry,
-            "--supersample",
-            "4",
-            "--width",
-            "256",
-            "--height",
-            "256",
-        ])
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .expect("running lumiere");
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    let image = output::load(&out).unwrap_or_else(|e| panic!("{}", common::error_line(&e)));
-    let mean = flip::mean(&reference, &image);
-    eprintln!("{entry}: FLIP {mean:.5} against Mitsuba's path tracer");
-    mean
+    entry_flip(entry, GLOBAL_REFERENCE, 256)
 }
 
 #[test]
