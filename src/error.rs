@@ -20,7 +20,7 @@ pub struct Unsupported {
 impl std::fmt::Display for Unsupported {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let handles = match self.method {
-            ShadowMethod::ShadowVolumes => {
+            ShadowMethod::ShadowVolumes | ShadowMethod::StencilShadowVolumes => {
                 "a hard-shadow method for point, spot and distant lights"
             }
             ShadowMethod::UmbraPenumbra | ShadowMethod::SoftShadowVolumes => {

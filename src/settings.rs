@@ -55,9 +55,13 @@ pub enum ShadowMethod {
     ShadowPolygons,
     /// Williams 1978: depth images from the light, compared per visible point.
     ShadowMap,
-    /// Crow 1977: volumes bounded by quads through the silhouette edges, counted
-    /// along each pixel's line of sight.
+    /// Crow 1977: volumes bounded by quads through the silhouette edges, entered
+    /// as invisible surfaces in the scan-line pass and counted along each span in
+    /// front of the visible surface.
     ShadowVolumes,
+    /// Heidmann 1991: the same volumes, each quad drawn on its own into a count
+    /// (stencil) buffer where it lies in front of the visible depth.
+    StencilShadowVolumes,
     /// Nishita & Nakamae 1983: umbra and penumbra polygons cut onto each receiver
     /// from the light's vertices; in the penumbra, the exact visible part of a
     /// polygonal light (the light minus the occluders projected onto it).
@@ -80,6 +84,7 @@ impl ShadowMethod {
             ShadowMethod::ShadowPolygons => "shadow-polygons",
             ShadowMethod::ShadowMap => "shadow-map",
             ShadowMethod::ShadowVolumes => "shadow-volumes",
+            ShadowMethod::StencilShadowVolumes => "stencil-shadow-volumes",
             ShadowMethod::UmbraPenumbra => "umbra-penumbra",
             ShadowMethod::SoftShadowVolumes => "soft-shadow-volumes",
             ShadowMethod::JitteredSoftShadows => "jittered-soft-shadows",
@@ -95,6 +100,9 @@ pub struct ShadowSettings {
     pub map_bias: f64,
     pub pcf: u32,
     pub post_pass: bool,
+    /// Appel's self-shadow rule: a sample whose surface faces away from the light is
+    /// dark whatever the method finds (off: each method's own answer shows).
+    pub self_shadow: bool,
     /// Ray casting under an extended light: N × N stratified samples over the emitter.
     pub light_samples: u32,
     /// Soft shadow volumes: the number of points the light is replaced by.

@@ -63,6 +63,59 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Scan-out with invisible surfaces in the edge table: at every sample the piece
+    /// shows the polygon the frame's own sweep shows, and lists exactly the invisible
+    /// triangles whose footprint covers the sample.
+    #[test]
+    fn scan_out_shows_what_the_sweep_shows(
+        visible in prop::collection::vec(triangle(), 1..10),
+        invisible in prop::collection::vec(triangle(), 0..8),
+    ) {
+        use lumiere::raster::{EdgeTable, covered_samples, scan_out};
+        let view = origin_view(64, 48);
+        let (w, h) = (view.width, view.height);
+        let shown: Vec<ScreenPolygon> = visible
+            .iter()
+            .enumerate()
+            .filter_map(|(k, t)| screen_polygon(&view, k as u32, t))
+            .collect();
+        let hidden: Vec<ScreenPolygon> = invisible
+            .iter()
+            .enumerate()
+            .filter_map(|(k, t)| screen_polygon(&view, 100 + k as u32, t))
+            .collect();
+        let sweep = rasterize(&shown, w, h);
+        // The invisible triangles covering each sample, as a bit set.
+        let mut covering = vec![0u32; (w * h) as usize];
+        for (k, p) in hidden.iter().enumerate() {
+            for (x, y) in covered_samples(p, w, h) {
+                covering[(y * w + x) as usize] |= 1 << k;
+            }
+        }
+        let mut all = shown.clone();
+        all.extend(hidden);
+        let table = EdgeTable::build(&all, h);
+        let found = scan_out(&all, shown.len(), &table, w, 0..h, None, |_| (), |_, row, out| {
+            for piece in row.pieces {
+                let bits = row
+                    .invisible(piece)
+                    .iter()
+                    .fold(0u32, |bits, &i| bits | 1 << (i as usize - shown.len()));
+                for x in piece.first..=piece.last {
+                    out[x as usize] = Some((all[piece.visible as usize].id, bits));
+                }
+            }
+        });
+        for (k, s) in sweep.samples.iter().enumerate() {
+            let expected = (!s.is_empty()).then_some((s.polygon, covering[k]));
+            prop_assert_eq!(found[k], expected, "sample {}", k);
+        }
+    }
+}
+
 fn cornell(id: &str, size: u32) -> Scene {
     load_scene(
         id,

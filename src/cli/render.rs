@@ -136,7 +136,10 @@ pub fn run(args: Args) -> Result<()> {
             scene.camera.near
         );
     }
-    if scene.shadows.method == ShadowMethod::ShadowVolumes {
+    if matches!(
+        scene.shadows.method,
+        ShadowMethod::ShadowVolumes | ShadowMethod::StencilShadowVolumes
+    ) {
         for name in lumiere::shadow::shadow_volumes::open_objects(scene) {
             eprintln!(
                 "warning: object `{name}` is not a closed 2-manifold: its shadow volume may leak light"

@@ -16,6 +16,7 @@
 mod edge_table;
 mod frame;
 mod project;
+mod scan_out;
 mod view;
 mod visibility;
 mod visible_surface;
@@ -28,6 +29,7 @@ pub use project::{
     ATTRIBUTES, Attributes, DepthPlane, RasterVertex, ScreenPolygon, ScreenVertex, ToPrepare, UV,
     UvGradient, prepare,
 };
+pub use scan_out::{Piece, ScanRow, scan_out};
 pub use view::View;
 pub use visibility::{LightVisibility, LitIntervals, Visibility, VisiblePart};
 pub use visible_surface::{NO_POLYGON, Sample, VisibleSurface};

@@ -28,7 +28,7 @@ use rayon::prelude::*;
 use std::ops::Range;
 use std::sync::Arc;
 
-const BAND_ROWS: u32 = 8;
+pub(super) const BAND_ROWS: u32 = 8;
 
 /// The visible surface at every sample of a `width × height` grid.
 pub fn rasterize(polygons: &[ScreenPolygon], width: u32, height: u32) -> VisibleSurface {
@@ -234,21 +234,21 @@ pub fn spans_inside(
 /// A polygon inside the current span, with its own left and right crossings on this
 /// row (indices into the AEL), between which its attributes are interpolated.
 #[derive(Clone, Copy, Debug)]
-struct Inside {
-    polygon: u32,
+pub(super) struct Inside {
+    pub(super) polygon: u32,
     left: usize,
     right: usize,
 }
 
-struct Sweep<'a> {
+pub(super) struct Sweep<'a> {
     table: &'a EdgeTable,
-    row: u32,
+    pub(super) row: u32,
     /// Active edges with their edge-table index (the tie-break of the sort).
     active: Vec<(u32, Crossing)>,
 }
 
 impl<'a> Sweep<'a> {
-    fn starting_at(table: &'a EdgeTable, row: u32) -> Sweep<'a> {
+    pub(super) fn starting_at(table: &'a EdgeTable, row: u32) -> Sweep<'a> {
         let active = table
             .edges
             .iter()
@@ -294,7 +294,7 @@ impl<'a> Sweep<'a> {
         self.active = merged;
     }
 
-    fn next_row(&mut self) {
+    pub(super) fn next_row(&mut self) {
         for (_, e) in &mut self.active {
             e.step();
         }
@@ -304,7 +304,7 @@ impl<'a> Sweep<'a> {
 
     /// Calls `f(first, last, inside, active)` for every span of this row that covers
     /// at least one sample and lies inside at least one polygon.
-    fn for_each_span(
+    pub(super) fn for_each_span(
         &self,
         width: u32,
         mut f: impl FnMut(i64, i64, &[Inside], &[(u32, Crossing)]),
@@ -374,17 +374,33 @@ fn resolve_span<
     span: &Span<W>,
     row: &mut [S],
 ) {
+    resolve_runs(i0, i1, inside, span.y, span.polygons, |c, a, b| {
+        fill_run::<S, W, ATTRIBUTES_USED>(&c, a, b, span, row)
+    });
+}
+
+/// Decides which of `inside` is nearest over the span [i0, i1] of row centre `y`,
+/// calling `run(candidate, first, last)` for each run of one winner: if one
+/// candidate is nearest at both ends it is nearest over the whole run; otherwise the
+/// run is split where the two winners' depths cross and each part decided again.
+pub(super) fn resolve_runs(
+    i0: i64,
+    i1: i64,
+    inside: &[Inside],
+    y: f64,
+    polygons: &[ScreenPolygon],
+    mut run: impl FnMut(Inside, i64, i64),
+) {
     if let [only] = inside {
-        fill_run::<S, W, ATTRIBUTES_USED>(only, i0, i1, span, row);
+        run(*only, i0, i1);
         return;
     }
-    let (y, polygons) = (span.y, span.polygons);
     let mut pending = vec![(i0, i1)];
     while let Some((a, b)) = pending.pop() {
         let left = nearest(inside, a as f64 + 0.5, y, polygons);
         let right = nearest(inside, b as f64 + 0.5, y, polygons);
         if left.polygon == right.polygon || a == b {
-            fill_run::<S, W, ATTRIBUTES_USED>(&left, a, b, span, row);
+            run(left, a, b);
             continue;
         }
         // Split where the two winners' depths cross along the row.

@@ -149,6 +149,7 @@ fn catalogue(
         if matches!(
             method,
             ShadowMethod::ShadowVolumes
+                | ShadowMethod::StencilShadowVolumes
                 | ShadowMethod::UmbraPenumbra
                 | ShadowMethod::SoftShadowVolumes
         ) {

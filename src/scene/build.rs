@@ -114,6 +114,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         map_bias: s.map_bias,
         pcf: s.pcf,
         post_pass: s.post_pass,
+        self_shadow: s.self_shadow,
     };
 
     let radiosity = file

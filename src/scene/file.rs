@@ -230,6 +230,11 @@ pub struct ShadowsFile {
     /// image) instead of a lookup in the light model.
     #[serde(default)]
     pub post_pass: bool,
+    /// Appel's self-shadow rule, shared by every method: a surface facing away from
+    /// the light is dark whatever the method finds. Off, each method's own answer
+    /// shows at the terminator.
+    #[serde(default = "self_shadow")]
+    pub self_shadow: bool,
     /// Ray casting under an extended light: N × N stratified samples over it.
     #[serde(default = "light_samples")]
     pub light_samples: u32,
@@ -258,6 +263,7 @@ impl Default for ShadowsFile {
             map_bias: map_bias(),
             pcf: pcf(),
             post_pass: false,
+            self_shadow: self_shadow(),
             light_samples: light_samples(),
             max_memory_mb: shadow_map_memory_mb(),
             light_points: light_points(),
@@ -279,6 +285,9 @@ fn map_bias() -> f64 {
 }
 fn pcf() -> u32 {
     1
+}
+fn self_shadow() -> bool {
+    true
 }
 fn light_samples() -> u32 {
     4

@@ -9,9 +9,11 @@
 //! depends on the view (projections onto the screen), and `FrameShadows::band`
 //! answers for the visible samples of one band of rows.
 //!
-//! Shared rule (Appel's "self-shadow"): a sample whose surface, on the side the eye
-//! sees, faces away from a point light is shadowed by every method; the methods
-//! differ in how they find the cast shadows. Spot lights are point lights with a
+//! Shared rule (Appel's "self-shadow"), on by default (`[shadows] self_shadow`): a
+//! sample whose surface, on the side the eye sees, faces away from a point light is
+//! shadowed by every method, so that methods compared sample by sample differ only
+//! in how they find the cast shadows. Off, each method answers there on its own
+//! (a shadow map's acne on the dark side, a volume's terminator). Spot lights are point lights with a
 //! directional intensity: every hard-shadow method shadows them from their position.
 //! Ray casting also samples extended lights, and shadow volumes also shadow distant
 //! lights. The soft-shadow methods shadow polygon lights (`umbra_penumbra` exactly,
@@ -31,6 +33,7 @@ pub mod shadow_polygon_areas;
 pub mod shadow_polygons;
 pub mod shadow_volumes;
 pub mod soft_shadow_volumes;
+pub mod stencil_shadow_volumes;
 pub mod umbra_penumbra;
 
 use crate::output::Buffer;
@@ -94,7 +97,9 @@ pub fn check(scene: &Scene, index: usize, method: ShadowMethod) -> Result<(), Un
             matches!(light, Light::Point(_) | Light::Spot(_) | Light::Polygon(_))
         }
         ShadowMethod::JitteredSoftShadows => matches!(light, Light::Sphere(_)),
-        ShadowMethod::ShadowVolumes => !matches!(light, Light::Polygon(_) | Light::Sphere(_)),
+        ShadowMethod::ShadowVolumes | ShadowMethod::StencilShadowVolumes => {
+            !matches!(light, Light::Polygon(_) | Light::Sphere(_))
+        }
         _ => light.position().is_some(),
     };
     match supported {
@@ -152,9 +157,16 @@ pub fn prepare(
                 ),
             )));
         }
-        (ShadowMethod::ShadowVolumes, Light::Distant(sun)) => {
-            let source = shadow_volumes::Source::Distant(sun.direction);
-            let volumes = shadow_volumes::ShadowVolumes::from_source(scene, source);
+        (ShadowMethod::ShadowVolumes | ShadowMethod::StencilShadowVolumes, _) => {
+            let source = match light {
+                Light::Distant(sun) => shadow_volumes::Source::Distant(sun.direction),
+                _ => shadow_volumes::Source::Point(light.position().expect("checked")),
+            };
+            let counting = match method {
+                ShadowMethod::ShadowVolumes => shadow_volumes::Counting::ScanOut,
+                _ => shadow_volumes::Counting::Stencil,
+            };
+            let volumes = shadow_volumes::ShadowVolumes::from_source(scene, source, counting);
             return Ok(Some(Arc::new(volumes)));
         }
         _ => {}
@@ -165,7 +177,9 @@ pub fn prepare(
         | ShadowMethod::RayCast
         | ShadowMethod::UmbraPenumbra
         | ShadowMethod::SoftShadowVolumes
-        | ShadowMethod::JitteredSoftShadows => unreachable!("handled above"),
+        | ShadowMethod::JitteredSoftShadows
+        | ShadowMethod::ShadowVolumes
+        | ShadowMethod::StencilShadowVolumes => unreachable!("handled above"),
         ShadowMethod::Scanline => Arc::new(scanline_shadows::ScanlineShadows::new(scene, at, true)),
         ShadowMethod::ShadowMap => Arc::new(shadow_map::CubeShadowMap::build(
             scene,
@@ -175,7 +189,6 @@ pub fn prepare(
             settings.pcf,
         )),
         ShadowMethod::ShadowPolygons => Arc::new(shadow_polygons::ShadowPolygons::new(scene, at)),
-        ShadowMethod::ShadowVolumes => Arc::new(shadow_volumes::ShadowVolumes::new(scene, at)),
     }))
 }
 
@@ -234,8 +247,12 @@ pub fn compute(
 }
 
 /// Whether the sample's surface, on the side the eye sees, faces away from the light
-/// (or the light lies in its plane): self-shadowed.
+/// (or the light lies in its plane): self-shadowed, when the scene keeps Appel's rule
+/// (`[shadows] self_shadow`; off, never).
 pub fn faces_away(scene: &Scene, view: &View, polygon: u32, position: DVec3, light: DVec3) -> bool {
+    if !scene.shadows.self_shadow {
+        return false;
+    }
     let n = scene.polygons[polygon as usize].normal;
     let eye_side = n.dot(view.eye - position);
     let light_side = n.dot(light - position);

@@ -4,6 +4,7 @@
 //! the first time a band shows the receiver, then swept on the rows of each band.
 
 use crate::raster::{EdgeTable, ScreenPolygon, VisibleSurface, spans_inside};
+use std::ops::Range;
 use std::sync::OnceLock;
 
 /// One receiver's polygons on the screen, with their edge table.
@@ -31,7 +32,18 @@ impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync> ReceiverScreens<F> {
     /// Calls `f(row, first, last, inside)` for every span of `band`'s rows that
     /// receiver `r`'s polygons cover, row by row, with the ids of the polygons
     /// covering it.
-    pub fn spans(&self, r: usize, band: &VisibleSurface, mut f: impl FnMut(u32, u32, u32, &[u32])) {
+    pub fn spans(&self, r: usize, band: &VisibleSurface, f: impl FnMut(u32, u32, u32, &[u32])) {
+        self.spans_on(r, band.width, band.rows(), f)
+    }
+
+    /// As `spans`, on rows `rows` of a screen `width` samples wide.
+    pub fn spans_on(
+        &self,
+        r: usize,
+        width: u32,
+        rows: Range<u32>,
+        mut f: impl FnMut(u32, u32, u32, &[u32]),
+    ) {
         let projected = self.slots[r].get_or_init(|| {
             let polygons = (self.project)(r);
             (!polygons.is_empty()).then(|| Projected {
@@ -39,7 +51,7 @@ impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync> ReceiverScreens<F> {
             })
         });
         if let Some(p) = projected {
-            spans_inside(&p.table, band.width, band.rows(), &mut f);
+            spans_inside(&p.table, width, rows, &mut f);
         }
     }
 }

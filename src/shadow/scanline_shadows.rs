@@ -10,10 +10,11 @@
 //! plane: C is clipped to that slab and projected from the light onto R's plane
 //! (`geometry::central_projection`). The projections are R's shadow polygons; they take no part in visibility.
 //!
-//! Scan-out: the visible-surface pass gives, on each row, the span segments where R
-//! is visible. R's shadow polygons, entered in an edge table of their own and swept
-//! like any polygons, give the row's shadowed intervals. Each segment is compared
-//! with them: no overlap, lit; covered, shadowed; partly covered, split at the
+//! Scan-out: the scan-line visible-surface sweep (`raster::scan_out`) hands over, row
+//! by row as it resolves them, the span segments where each polygon R is visible.
+//! R's shadow polygons, entered in an edge table of their own and swept like any
+//! polygons, give the row's shadowed intervals. Each segment is compared with them
+//! there and then: no overlap, lit; covered, shadowed; partly covered, split at the
 //! interval ends and each piece classified again.
 //!
 //! Choices: a polygon's extent on the sphere is bounded by a cone (axis the mean of
@@ -24,14 +25,18 @@
 //! false` gives the same image. Shadow polygons are projected only onto receivers
 //! the eye sees somewhere: the others are never scanned out. Scene key: `[shadows] method = "scanline"`.
 
-use super::receivers::{ReceiverScreens, seen_in};
+use super::receivers::ReceiverScreens;
 use super::{BandShadows, FrameShadows, LightShadows, per_sample};
 use crate::geometry::central_projection::onto_plane;
-use crate::raster::{LightVisibility, ScreenPolygon, View, VisibleSurface};
+use crate::raster::{
+    EdgeTable, LightVisibility, ScreenPolygon, View, VisibleSurface, scan_out, screen_polygons,
+};
 use crate::scene::{Polygon, Scene};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::collections::HashMap;
 use std::f64::consts::PI;
+use std::ops::Range;
 use std::sync::OnceLock;
 
 /// A polygon's extent as seen from the light: a cone around `axis`.
@@ -164,10 +169,13 @@ impl LightShadows for ScanlineShadows {
                 .filter_map(|corners| ScreenPolygon::from_points(view, r as u32, corners))
                 .collect()
         };
+        let polygons = screen_polygons(scene, view);
         Box::new(ScanlineFrame {
             shadows: self,
             scene,
             view,
+            table: EdgeTable::build(&polygons, view.height),
+            polygons,
             screens: ReceiverScreens::new(scene.polygons.len(), view.height, project),
         })
     }
@@ -177,64 +185,84 @@ struct ScanlineFrame<'a, F> {
     shadows: &'a ScanlineShadows,
     scene: &'a Scene,
     view: &'a View,
+    /// The scene on this view's screen, swept again at scan-out.
+    polygons: Vec<ScreenPolygon>,
+    table: EdgeTable,
     screens: ReceiverScreens<F>,
+}
+
+/// What one group of rows of the scan-out keeps: per receiver met, its shadow
+/// polygons' intervals on each of the group's rows (sorted, disjoint).
+struct GroupIntervals {
+    rows: Range<u32>,
+    per_receiver: HashMap<u32, Vec<Vec<(u32, u32)>>>,
+}
+
+impl GroupIntervals {
+    /// Receiver `r`'s shadowed intervals on `row`, its shadow polygons swept over the
+    /// group's rows the first time the group meets it.
+    fn on<F: Fn(usize) -> Vec<ScreenPolygon> + Sync>(
+        &mut self,
+        screens: &ReceiverScreens<F>,
+        width: u32,
+        r: u32,
+        row: u32,
+    ) -> &[(u32, u32)] {
+        let rows = self.rows.clone();
+        let per_row = self.per_receiver.entry(r).or_insert_with(|| {
+            let mut per_row: Vec<Vec<(u32, u32)>> = vec![Vec::new(); rows.len()];
+            screens.spans_on(r as usize, width, rows.clone(), |y, a, b, _| {
+                let intervals = &mut per_row[(y - rows.start) as usize];
+                match intervals.last_mut() {
+                    Some(last) if last.1 + 1 >= a => last.1 = last.1.max(b),
+                    _ => intervals.push((a, b)),
+                }
+            });
+            per_row
+        });
+        &per_row[(row - rows.start) as usize]
+    }
 }
 
 impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync + Send> FrameShadows for ScanlineFrame<'_, F> {
     fn band(&self, band: &VisibleSurface) -> BandShadows {
-        let width = band.width as usize;
-        // The visible span segments of each row: runs of one polygon.
-        let segments: Vec<Vec<(u32, u32, u32)>> = band
-            .samples
-            .par_chunks(width)
-            .map(|row| {
-                let mut runs: Vec<(u32, u32, u32)> = Vec::new();
-                for (i, s) in row.iter().enumerate() {
-                    match runs.last_mut() {
-                        Some(run) if run.0 == s.polygon && run.2 + 1 == i as u32 => {
-                            run.2 = i as u32
-                        }
-                        _ => runs.push((s.polygon, i as u32, i as u32)),
+        let width = band.width;
+        // During scan-out: each visible segment (a run of one polygon on the row) is
+        // classified against its polygon's shadow intervals on that row.
+        let dark = scan_out(
+            &self.polygons,
+            self.polygons.len(),
+            &self.table,
+            width,
+            band.rows(),
+            false,
+            |rows| GroupIntervals {
+                rows,
+                per_receiver: HashMap::new(),
+            },
+            |group, row, out| {
+                let mut pieces = row.pieces.iter().peekable();
+                while let Some(piece) = pieces.next() {
+                    let (x0, mut x1) = (piece.first, piece.last);
+                    while let Some(next) =
+                        pieces.next_if(|p| p.visible == piece.visible && p.first == x1 + 1)
+                    {
+                        x1 = next.last;
                     }
+                    let receiver = self.polygons[piece.visible as usize].id;
+                    let intervals = group.on(&self.screens, width, receiver, row.row);
+                    classify(x0, x1, intervals, &mut |a, b| {
+                        out[a as usize..=b as usize].fill(true)
+                    });
                 }
-                runs
-            })
-            .collect();
-        let shadowed: Vec<Vec<usize>> = seen_in(band, self.scene.polygons.len())
-            .into_par_iter()
-            .map(|receiver| {
-                let mut intervals: Vec<Vec<(u32, u32)>> = vec![Vec::new(); band.height as usize];
-                self.screens.spans(receiver, band, |row, a, b, _| {
-                    let row = &mut intervals[(row - band.first_row) as usize];
-                    match row.last_mut() {
-                        Some(last) if last.1 + 1 >= a => last.1 = last.1.max(b),
-                        _ => row.push((a, b)),
-                    }
-                });
-                let mut dark = Vec::new();
-                for (y, row) in intervals.iter().enumerate() {
-                    if row.is_empty() {
-                        continue;
-                    }
-                    for &(_, x0, x1) in segments[y].iter().filter(|s| s.0 == receiver as u32) {
-                        classify(x0, x1, row, &mut |a, b| {
-                            dark.extend((a..=b).map(|x| y * width + x as usize))
-                        });
-                    }
-                }
-                dark
-            })
-            .collect();
-        let mut lit = vec![true; band.samples.len()];
-        for k in shadowed.into_iter().flatten() {
-            lit[k] = false;
-        }
+            },
+        );
         BandShadows::fraction(per_sample(
             self.scene,
             self.view,
             band,
             self.shadows.light,
-            |k, _, _| lit[k],
+            |k, _, _| !dark[k],
         ))
     }
 }

@@ -6,12 +6,15 @@
 //! all, on an open boundary). An object of a single polygon is two-sided: whichever
 //! side the light is on faces it. Through each silhouette edge a shadow polygon is built,
 //! the quad from the edge to its projection away from the light, "taken far enough"
-//! (Crow's V_i) and then clipped to the view volume like any polygon. During the
-//! frame, shadow polygons take no part in visibility; for each pixel, the shadow
-//! polygons lying in front of the visible surface are counted, +1 for those facing
-//! the eye (entering a volume) and −1 for those facing away (leaving it). A point is
-//! in shadow when the count, started at the number of volumes that contain the eye,
-//! is positive.
+//! (Crow's V_i) and then clipped to the view volume like any polygon. The shadow
+//! polygons are invisible surfaces of the scan-line pass itself: they enter its edge
+//! table beside the scene's polygons and cut its spans, but take no part in
+//! visibility (`raster::scan_out`). Along each piece of a span, a shadow polygon in
+//! front of the visible surface counts +1 if it faces the eye (entering a volume)
+//! and −1 if it faces away (leaving it); where its depth crosses the visible
+//! surface's the piece is split. A point is in shadow when the count, started at
+//! the number of volumes that contain the eye, is positive. Heidmann's count buffer
+//! (`stencil_shadow_volumes`) finds the same counts after the pass.
 //!
 //! The method is only as valid as the objects: a volume is closed only if its object
 //! is a closed 2-manifold. On an open mesh, polygons facing away from the light still
@@ -29,7 +32,8 @@ use super::{BandShadows, FrameShadows, LightShadows, faces_away, per_sample};
 use crate::geometry::bvh::Aabb;
 use crate::geometry::polygon::{centroid, newell_normal};
 use crate::raster::{
-    EdgeTable, LightVisibility, ScreenPolygon, View, VisibleSurface, spans_inside,
+    DepthPlane, EdgeTable, LightVisibility, ScreenPolygon, View, VisibleSurface, scan_out,
+    screen_polygons,
 };
 use crate::scene::Scene;
 use crate::scene::ray_queries::segment_meets_polygon;
@@ -166,36 +170,42 @@ pub fn on_screen(quads: &[ShadowQuad], view: &View) -> (Vec<ScreenPolygon>, Vec<
     (screens, steps)
 }
 
-/// The pre-pass for a point light: the quads of every object's silhouette.
+/// How the volumes are counted along a line of sight.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Counting {
+    /// Crow's: the quads are invisible surfaces of the scan-line pass.
+    ScanOut,
+    /// Heidmann's: each quad drawn on its own into a count buffer
+    /// (`stencil_shadow_volumes`).
+    Stencil,
+}
+
+/// The pre-pass for one light: the quads of every object's silhouette.
 pub struct ShadowVolumes {
-    source: Source,
-    quads: Vec<ShadowQuad>,
+    pub(super) source: Source,
+    pub(super) quads: Vec<ShadowQuad>,
     /// How far the quads reach (a distant light's self-shadow test looks that far).
     reach: f64,
+    counting: Counting,
 }
 
 impl ShadowVolumes {
+    /// Crow's volumes for a point light at `light`.
     pub fn new(scene: &Scene, light: DVec3) -> ShadowVolumes {
-        ShadowVolumes::from_source(scene, Source::Point(light))
+        ShadowVolumes::from_source(scene, Source::Point(light), Counting::ScanOut)
     }
 
-    /// The volumes of a light from `source`: a point, or a distant light's prisms.
-    pub fn from_source(scene: &Scene, source: Source) -> ShadowVolumes {
+    /// The volumes of a light from `source`, a point or a distant light's prisms,
+    /// counted by `counting`.
+    pub fn from_source(scene: &Scene, source: Source, counting: Counting) -> ShadowVolumes {
         ShadowVolumes {
             source,
             quads: quads_from(scene, source),
             reach: reach(scene, source),
+            counting,
         }
     }
-}
 
-impl LightShadows for ShadowVolumes {
-    fn frame<'a>(&'a self, scene: &'a Scene, view: &'a View) -> Box<dyn FrameShadows + 'a> {
-        Box::new(self.volumes_frame(scene, view))
-    }
-}
-
-impl ShadowVolumes {
     /// The light's position (for a distant light, a point beyond the scene against
     /// its travel from the origin).
     pub fn light(&self) -> DVec3 {
@@ -205,49 +215,17 @@ impl ShadowVolumes {
         }
     }
 
-    /// The quads on this view's screen, in an edge table, and the eye's count.
-    pub(super) fn volumes_frame<'a>(
-        &'a self,
-        scene: &'a Scene,
-        view: &'a View,
-    ) -> VolumesFrame<'a> {
-        let (screens, steps) = on_screen(&self.quads, view);
-        VolumesFrame {
-            source: self.source,
-            reach: self.reach,
-            scene,
-            view,
-            table: EdgeTable::build(&screens, view.height),
-            screens,
-            steps,
-            start: eye_count_from(scene, view.eye, self.source),
-        }
-    }
-}
-
-pub(super) struct VolumesFrame<'a> {
-    source: Source,
-    reach: f64,
-    scene: &'a Scene,
-    view: &'a View,
-    screens: Vec<ScreenPolygon>,
-    table: EdgeTable,
-    /// Per screen quad, +1 entering a volume, −1 leaving it.
-    steps: Vec<i32>,
-    /// The number of volumes containing the eye.
-    start: i32,
-}
-
-/// Rows counted by one task.
-const GROUP_ROWS: usize = 8;
-
-impl FrameShadows for VolumesFrame<'_> {
-    fn band(&self, band: &VisibleSurface) -> BandShadows {
-        let counts = self.counts(band);
+    /// The light's visibility on `band` from each sample's count: lit where no
+    /// volume contains the visible point and the surface faces the light.
+    pub(super) fn shadows_from(
+        &self,
+        scene: &Scene,
+        view: &View,
+        band: &VisibleSurface,
+        counts: Vec<i32>,
+    ) -> BandShadows {
         let visibility = match self.source {
-            Source::Point(light) => {
-                per_sample(self.scene, self.view, band, light, |k, _, _| counts[k] <= 0)
-            }
+            Source::Point(light) => per_sample(scene, view, band, light, |k, _, _| counts[k] <= 0),
             // The self-shadow rule towards a point beyond the scene against the travel.
             Source::Distant(travel) => band
                 .samples
@@ -257,7 +235,7 @@ impl FrameShadows for VolumesFrame<'_> {
                     let towards = s.position - travel * self.reach;
                     let lit = !s.is_empty()
                         && count <= 0
-                        && !faces_away(self.scene, self.view, s.polygon, s.position, towards);
+                        && !faces_away(scene, view, s.polygon, s.position, towards);
                     if lit { 1.0 } else { 0.0 }
                 })
                 .collect(),
@@ -269,35 +247,124 @@ impl FrameShadows for VolumesFrame<'_> {
     }
 }
 
-impl VolumesFrame<'_> {
-    /// Crow's count along each pixel's line of sight: the scan-line sweep of the
-    /// shadow quads gives, for every span, the quads covering it; each counts at a
-    /// sample when it is nearer than the visible surface.
-    pub(super) fn counts(&self, band: &VisibleSurface) -> Vec<i32> {
-        let width = band.width as usize;
-        let mut counts = vec![self.start; band.samples.len()];
-        counts
-            .par_chunks_mut(width * GROUP_ROWS)
-            .enumerate()
-            .for_each(|(group, counts)| {
-                let first = band.first_row + (group * GROUP_ROWS) as u32;
-                let rows = first..first + (counts.len() / width) as u32;
-                spans_inside(&self.table, band.width, rows, |row, a, b, inside| {
-                    let local = (row - first) as usize * width;
-                    let band_row = (row - band.first_row) as usize * width;
-                    for &q in inside {
-                        let plane = self.screens[q as usize].plane;
-                        for x in a..=b {
-                            let sample_zeta = 1.0 / band.samples[band_row + x as usize].depth;
-                            let quad_zeta = plane.zeta(x as f64 + 0.5, row as f64 + 0.5);
-                            if quad_zeta > sample_zeta * (1.0 + 1e-9) {
-                                counts[local + x as usize] += self.steps[q as usize];
-                            }
-                        }
+impl LightShadows for ShadowVolumes {
+    fn frame<'a>(&'a self, scene: &'a Scene, view: &'a View) -> Box<dyn FrameShadows + 'a> {
+        match self.counting {
+            Counting::ScanOut => Box::new(CrowFrame::new(self, scene, view)),
+            Counting::Stencil => Box::new(self.count_buffer(scene, view)),
+        }
+    }
+}
+
+/// Crow's frame: the scene's polygons and, after them, the shadow quads on this
+/// view's screen, in one edge table.
+struct CrowFrame<'a> {
+    volumes: &'a ShadowVolumes,
+    scene: &'a Scene,
+    view: &'a View,
+    polygons: Vec<ScreenPolygon>,
+    /// How many of `polygons` are the scene's (the rest are quads).
+    visible: usize,
+    table: EdgeTable,
+    /// Per screen quad, +1 entering a volume, −1 leaving it.
+    steps: Vec<i32>,
+    /// The number of volumes containing the eye.
+    start: i32,
+}
+
+impl<'a> CrowFrame<'a> {
+    fn new(volumes: &'a ShadowVolumes, scene: &'a Scene, view: &'a View) -> CrowFrame<'a> {
+        let mut polygons = screen_polygons(scene, view);
+        let visible = polygons.len();
+        let (quads, steps) = on_screen(&volumes.quads, view);
+        polygons.extend(quads);
+        CrowFrame {
+            volumes,
+            scene,
+            view,
+            table: EdgeTable::build(&polygons, view.height),
+            polygons,
+            visible,
+            steps,
+            start: eye_count_from(scene, view.eye, volumes.source),
+        }
+    }
+}
+
+impl FrameShadows for CrowFrame<'_> {
+    /// Along each piece of a span (one visible polygon, the quads covering it), a
+    /// quad counts where it lies in front of the visible surface: both are planes,
+    /// so the piece is split where their depths cross and each part decided by its
+    /// ends, as the sweep decides visibility.
+    fn band(&self, band: &VisibleSurface) -> BandShadows {
+        let counts = scan_out(
+            &self.polygons,
+            self.visible,
+            &self.table,
+            band.width,
+            band.rows(),
+            self.start,
+            |_| (),
+            |_, row, out| {
+                let y = row.row as f64 + 0.5;
+                for piece in row.pieces {
+                    let surface = self.polygons[piece.visible as usize].plane;
+                    for &q in row.invisible(piece) {
+                        let quad = self.polygons[q as usize].plane;
+                        let step = self.steps[q as usize - self.visible];
+                        in_front(piece.first, piece.last, y, quad, surface, |a, b| {
+                            out[a as usize..=b as usize]
+                                .iter_mut()
+                                .for_each(|c| *c += step)
+                        });
                     }
-                });
-            });
-        counts
+                }
+            },
+        );
+        self.volumes
+            .shadows_from(self.scene, self.view, band, counts)
+    }
+}
+
+/// Calls `f(first, last)` for the runs of samples `a..=b` of the row at centre `y`
+/// where plane `quad` is nearer than plane `surface` by a relative 1e-9 (the quads
+/// start on the occluders' own edges): decided at the run's ends, split where the
+/// depths cross.
+fn in_front(
+    a: u32,
+    b: u32,
+    y: f64,
+    quad: DepthPlane,
+    surface: DepthPlane,
+    mut f: impl FnMut(u32, u32),
+) {
+    let ahead = |x: u32| {
+        let x = x as f64 + 0.5;
+        quad.zeta(x, y) > surface.zeta(x, y) * (1.0 + 1e-9)
+    };
+    let mut pending = vec![(a, b)];
+    while let Some((a, b)) = pending.pop() {
+        let (left, right) = (ahead(a), ahead(b));
+        if left == right {
+            if left {
+                f(a, b);
+            }
+            continue;
+        }
+        if a == b {
+            continue;
+        }
+        // ζ_quad − (1 + 1e-9) ζ_surface is linear in x: split at its zero.
+        let k = 1.0 + 1e-9;
+        let slope = quad.a - k * surface.a;
+        let crossing = -((quad.b - k * surface.b) * y + (quad.c - k * surface.c)) / slope;
+        let split = if crossing.is_finite() {
+            ((crossing - 0.5).floor() as i64).clamp(a as i64, b as i64 - 1) as u32
+        } else {
+            a + (b - a) / 2
+        };
+        pending.push((split + 1, b));
+        pending.push((a, split));
     }
 }
 

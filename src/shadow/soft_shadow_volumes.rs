@@ -24,7 +24,8 @@
 //! Point and spot lights are one point already: their shadow is Crow's. Scene keys:
 //! `[shadows] method = "soft-shadow-volumes"`, `light_points = n`, `seed`.
 
-use super::shadow_volumes::{ShadowVolumes, VolumesFrame};
+use super::shadow_volumes::ShadowVolumes;
+use super::stencil_shadow_volumes::CountBuffer;
 use super::{BandShadows, FrameShadows, LightShadows, faces_away};
 use crate::geometry::sampling::Stream;
 use crate::raster::{LightVisibility, View, VisibleSurface};
@@ -84,7 +85,7 @@ impl LightShadows for SoftShadowVolumes {
             frames: self
                 .points
                 .iter()
-                .map(|p| p.volumes_frame(scene, view))
+                .map(|p| p.count_buffer(scene, view))
                 .collect(),
         })
     }
@@ -94,7 +95,7 @@ struct SoftFrame<'a> {
     method: &'a SoftShadowVolumes,
     scene: &'a Scene,
     view: &'a View,
-    frames: Vec<VolumesFrame<'a>>,
+    frames: Vec<CountBuffer<'a>>,
 }
 
 impl FrameShadows for SoftFrame<'_> {
