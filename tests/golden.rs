@@ -1,10 +1,14 @@
-//! Golden images: every catalogue entry rendered at its test size must match
-//! golden/<id>.png. A pixel fails when a channel differs by more than 1/255; the
-//! test asserts no failing pixel. On failure, golden-failures/<id>.png shows
-//! expected | difference (×8) | actual.
+//! Golden images: every catalogue entry rendered at its test size must match its
+//! references under golden/: <id>.png, the displayed image (a pixel fails when a
+//! channel differs by more than 1/255), and <id>.exr, the linear radiance in 32-bit
+//! floats, which keeps the dark end where shadows and radiosity live (a channel
+//! fails when it differs by more than a relative 1e-5 of the reference, with an
+//! absolute floor of 1e-6 of the reference's brightest channel). The test asserts no
+//! failing pixel in either. On failure, golden-failures/<id>.png shows expected |
+//! difference (×8) | actual.
 //!
 //! Regenerate: `LUMIERE_UPDATE_GOLDEN=1 cargo test --release --test golden`. It
-//! rewrites the images and still fails, so that someone looks at each before
+//! rewrites both references and still fails, so that someone looks at each before
 //! committing it.
 
 mod common;
@@ -16,6 +20,10 @@ use std::path::{Path, PathBuf};
 
 /// Largest per-channel difference (in 1/255 steps) that still counts as equal.
 const CHANNEL_TOLERANCE: u8 = 1;
+/// Largest relative difference of a linear channel that still counts as equal.
+const RELATIVE_TOLERANCE: f32 = 1e-5;
+/// The absolute floor of that tolerance, as a share of the brightest channel.
+const FLOOR: f32 = 1e-6;
 
 fn main() {
     let args = Arguments::from_args();
@@ -53,9 +61,12 @@ fn check(id: &str) -> Result<(), Failed> {
     let actual =
         output::encode(&image, output::Format::Png, exposure).map_err(|e| e.to_string())?;
     let golden = root().join("golden").join(format!("{id}.png"));
+    let linear = root().join("golden").join(format!("{id}.exr"));
     let regenerate = format!("LUMIERE_UPDATE_GOLDEN=1 cargo test --release --test golden -- {id}");
     if std::env::var_os("LUMIERE_UPDATE_GOLDEN").is_some() {
+        let exr = output::encode(&image, output::Format::Exr, 1.0).map_err(|e| e.to_string())?;
         output::write_atomically(&golden, &actual).map_err(|e| e.to_string())?;
+        output::write_atomically(&linear, &exr).map_err(|e| e.to_string())?;
         return Err(format!(
             "{id}: golden rewritten at {}; look at it, then run the tests again",
             golden.display()
@@ -80,7 +91,7 @@ fn check(id: &str) -> Result<(), Failed> {
     }
     let failing = failing_pixels(&expected, &actual);
     if failing == 0 {
-        return Ok(());
+        return check_linear(id, &image, &linear, &regenerate);
     }
     let comparison = output::compare(&expected, &actual, 1.0).map_err(|e| e.to_string())?;
     let report = write_failure(id, &expected, &actual);
@@ -89,6 +100,64 @@ fn check(id: &str) -> Result<(), Failed> {
         comparison.max_difference,
         comparison.rmse,
         report.display()
+    )
+    .into())
+}
+
+/// The render against the linear reference, channel by channel, in radiance.
+fn check_linear(id: &str, image: &Image, path: &Path, regenerate: &str) -> Result<(), Failed> {
+    if !path.exists() {
+        return Err(format!(
+            "{id}: no linear reference at {}; create it with `{regenerate}`",
+            path.display()
+        )
+        .into());
+    }
+    let expected = output::load(path).map_err(|e| common::error_line(&e))?;
+    if (expected.width, expected.height) != (image.width, image.height) {
+        return Err(format!(
+            "{id}: linear reference is {}x{}; regenerate with `{regenerate}`",
+            expected.width, expected.height
+        )
+        .into());
+    }
+    let brightest = expected
+        .pixels
+        .iter()
+        .flat_map(|p| p.to_array())
+        .filter(|v| v.is_finite())
+        .fold(0.0f32, |m, v| m.max(v.abs()));
+    let floor = FLOOR * brightest;
+    let mut failing = 0;
+    let mut worst = (0.0f32, 0usize);
+    for (k, (e, a)) in expected.pixels.iter().zip(&image.pixels).enumerate() {
+        let off = (0..3)
+            .map(|c| {
+                let (e, a) = (e[c], a[c]);
+                if e == a || (e.is_nan() && a.is_nan()) {
+                    0.0
+                } else {
+                    (e - a).abs() / (RELATIVE_TOLERANCE * e.abs()).max(floor)
+                }
+            })
+            .fold(
+                0.0f32,
+                |m, v| if v.is_nan() { f32::INFINITY } else { m.max(v) },
+            );
+        if off > 1.0 {
+            failing += 1;
+            if off > worst.0 {
+                worst = (off, k);
+            }
+        }
+    }
+    if failing == 0 {
+        return Ok(());
+    }
+    let (x, y) = (worst.1 as u32 % image.width, worst.1 as u32 / image.width);
+    Err(format!(
+        "{id}: {failing} pixels differ from the linear reference by more than a relative {RELATIVE_TOLERANCE} (worst at ({x}, {y}): {:?} against {:?}); if the change is intended, regenerate with `{regenerate}`",
+        image.pixels[worst.1], expected.pixels[worst.1]
     )
     .into())
 }
@@ -136,7 +205,10 @@ fn orphans() -> Result<(), Failed> {
             .file_stem()
             .and_then(|s| s.to_str())
             .unwrap_or_default();
-        if path.extension() == Some("png".as_ref()) && !ids.iter().any(|id| id == stem) {
+        let reference = ["png", "exr"]
+            .iter()
+            .any(|e| path.extension() == Some(e.as_ref()));
+        if reference && !ids.iter().any(|id| id == stem) {
             orphans.push(Path::new(&path).display().to_string());
         }
     }

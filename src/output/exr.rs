@@ -1,27 +1,30 @@
-//! OpenEXR: linear RGB as 32-bit floats, through the `image` crate's `exr` codec
-//! (which writes lossless run-length-encoded 64 × 64 tiles); any exposure is the
-//! viewer's business, as with PFM.
+//! OpenEXR: linear RGB as 32-bit floats, written through the `exr` crate with
+//! lossless ZIP compression over blocks of 16 scan lines (the held linear references
+//! under golden/ are kept this way); any exposure is the viewer's business, as with
+//! PFM.
 
 use super::Image;
 use crate::{Error, Result};
+use ::exr::prelude::{Encoding, SpecificChannels, Vec2, WritableImage};
 use glam::Vec3;
-use image::ImageEncoder;
 use std::io::Cursor;
 
 pub fn encode(image: &Image) -> Result<Vec<u8>> {
-    let data: Vec<u8> = image
-        .pixels
-        .iter()
-        .flat_map(|p| p.to_array())
-        .flat_map(f32::to_ne_bytes)
-        .collect();
+    let width = image.width as usize;
+    let channels = SpecificChannels::rgb(|at: Vec2<usize>| {
+        let p = image.pixels[at.y() * width + at.x()];
+        (p.x, p.y, p.z)
+    });
+    let exr = ::exr::prelude::Image::from_encoded_channels(
+        (width, image.height as usize),
+        Encoding::SMALL_LOSSLESS,
+        channels,
+    );
     let mut out = Cursor::new(Vec::new());
-    image::codecs::openexr::OpenExrEncoder::new(&mut out).write_image(
-        &data,
-        image.width,
-        image.height,
-        image::ExtendedColorType::Rgb32F,
-    )?;
+    exr.write()
+        .non_parallel()
+        .to_buffered(&mut out)
+        .map_err(|e| Error::image(format!("cannot encode OpenEXR: {e}")))?;
     Ok(out.into_inner())
 }
 
