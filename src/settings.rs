@@ -98,7 +98,12 @@ pub struct ShadowSettings {
     pub method: ShadowMethod,
     pub map_resolution: u32,
     pub map_bias: f64,
+    /// Shadow map: how its depth tests are filtered.
+    pub map_filter: MapFilter,
+    /// Shadow map, box filter: the kernel's side k (k × k texels).
     pub pcf: u32,
+    /// Shadow map: Reeves, Salesin & Cook's filter.
+    pub percentage_closer: PercentageCloser,
     pub post_pass: bool,
     /// Appel's self-shadow rule: a sample whose surface faces away from the light is
     /// dark whatever the method finds (off: each method's own answer shows).
@@ -114,6 +119,46 @@ pub struct ShadowSettings {
     /// The seed of the stochastic methods' streams (soft shadow volumes' points,
     /// jittered cells).
     pub seed: u64,
+}
+
+/// How a shadow map's depth tests are filtered (`[shadows] map_filter`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MapFilter {
+    /// Williams 1978: one test, against the texel the point falls in.
+    #[default]
+    None,
+    /// A fixed k × k box of texels around that texel, the fraction that passes: a
+    /// function of the texel index alone, so its result is constant over a texel.
+    Box,
+    /// Reeves, Salesin & Cook 1987: jittered points over the sample's footprint in
+    /// the map, each with its own random bias; the fraction that passes.
+    PercentageCloser,
+}
+
+/// Reeves, Salesin & Cook's percentage-closer filter (`pcf_samples`, `pcf_bias`,
+/// `pcf_scale`, `pcf_min_size`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PercentageCloser {
+    /// Points per sample, a square number: √N × √N strata, one jittered point each.
+    pub samples: u32,
+    /// Each point's bias, uniform in [min, max], in slope-scaled texels.
+    pub bias: [f64; 2],
+    /// The footprint's sides are multiplied by this, about its centre (soft edges).
+    pub scale: f64,
+    /// Then each side is widened to at least this many texels.
+    pub min_size: f64,
+}
+
+impl Default for PercentageCloser {
+    fn default() -> Self {
+        PercentageCloser {
+            samples: 16,
+            bias: [1.0, 2.0],
+            scale: 1.0,
+            min_size: 0.0,
+        }
+    }
 }
 
 /// Where a jittered soft shadow's ray meets its hexagonal cell.

@@ -62,6 +62,8 @@ fn bands_and_threads_do_not_change_a_single_bit() {
         sets.push(&set);
         cases.push((method.into(), scene("cornell-box-point", &sets)));
     }
+    // Reeves's points: one stream per sample, by its place on the whole grid.
+    cases.push(("percentage-closer".into(), scene("shadow-map-pcf", &small)));
     let mut soft = small.to_vec();
     soft.extend(["shadows.method=\"ray-cast\"", "shadows.light_samples=3"]);
     cases.push(("soft".into(), scene("cornell-box", &soft)));

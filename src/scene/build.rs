@@ -12,6 +12,7 @@ use super::{
 };
 use crate::error::ensure_valid;
 use crate::geometry::polygon::{area, centroid, newell_normal, non_planarity};
+use crate::settings::{MapFilter, PercentageCloser};
 use crate::texture::Texture;
 use crate::texture::mapping::Mapping;
 use crate::{Error, Result};
@@ -85,6 +86,31 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         "shadows.pcf must be an odd kernel size from 1 to 15, got {}",
         s.pcf
     );
+    let n = s.pcf_samples.isqrt();
+    ensure_valid!(
+        (1..=1024).contains(&s.pcf_samples) && n * n == s.pcf_samples,
+        "shadows.pcf_samples",
+        "shadows.pcf_samples must be a square number from 1 to 1024 (n x n jittered points), got {}",
+        s.pcf_samples
+    );
+    let [low, high] = s.pcf_bias;
+    ensure_valid!(
+        low.is_finite() && high.is_finite() && 0.0 <= low && low <= high,
+        "shadows.pcf_bias",
+        "shadows.pcf_bias must be [min, max] with 0 <= min <= max (slope-scaled texels), got [{low}, {high}]"
+    );
+    ensure_valid!(
+        s.pcf_scale.is_finite() && s.pcf_scale > 0.0 && s.pcf_scale <= 64.0,
+        "shadows.pcf_scale",
+        "shadows.pcf_scale must be a positive number up to 64, got {}",
+        s.pcf_scale
+    );
+    ensure_valid!(
+        s.pcf_min_size.is_finite() && (0.0..=64.0).contains(&s.pcf_min_size),
+        "shadows.pcf_min_size",
+        "shadows.pcf_min_size must be between 0 and 64 texels, got {}",
+        s.pcf_min_size
+    );
     ensure_valid!(
         (1..=64).contains(&s.light_samples),
         "shadows.light_samples",
@@ -112,7 +138,17 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         method: s.method,
         map_resolution: s.map_resolution,
         map_bias: s.map_bias,
+        map_filter: s.map_filter.unwrap_or(match s.pcf {
+            1 => MapFilter::None,
+            _ => MapFilter::Box,
+        }),
         pcf: s.pcf,
+        percentage_closer: PercentageCloser {
+            samples: s.pcf_samples,
+            bias: s.pcf_bias,
+            scale: s.pcf_scale,
+            min_size: s.pcf_min_size,
+        },
         post_pass: s.post_pass,
         self_shadow: s.self_shadow,
     };

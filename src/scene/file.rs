@@ -223,9 +223,26 @@ pub struct ShadowsFile {
     /// Shadow map: depth bias in texels (of the map at the sample's distance).
     #[serde(default = "map_bias")]
     pub map_bias: f64,
-    /// Shadow map: percentage-closer filtering kernel (k × k texels; 1 = off).
+    /// Shadow map: `none`, `box` or `percentage-closer`; absent, `box` when `pcf`
+    /// is above 1 (what `pcf` alone always meant), else `none`.
+    #[serde(default)]
+    pub map_filter: Option<crate::settings::MapFilter>,
+    /// Shadow map, box filter: the kernel, k × k texels.
     #[serde(default = "pcf")]
     pub pcf: u32,
+    /// Shadow map, percentage-closer filter: jittered points per sample (n²).
+    #[serde(default = "pcf_samples")]
+    pub pcf_samples: u32,
+    /// Shadow map, percentage-closer filter: each point's bias range [min, max], in
+    /// slope-scaled texels.
+    #[serde(default = "pcf_bias")]
+    pub pcf_bias: [f64; 2],
+    /// Shadow map, percentage-closer filter: the footprint's scale.
+    #[serde(default = "pcf_scale")]
+    pub pcf_scale: f64,
+    /// Shadow map, percentage-closer filter: the region's least side, in texels.
+    #[serde(default)]
+    pub pcf_min_size: f64,
     /// Shadow map: Williams's original post-pass (shadow applied to the finished
     /// image) instead of a lookup in the light model.
     #[serde(default)]
@@ -261,7 +278,12 @@ impl Default for ShadowsFile {
             method: Default::default(),
             map_resolution: map_resolution(),
             map_bias: map_bias(),
+            map_filter: None,
             pcf: pcf(),
+            pcf_samples: pcf_samples(),
+            pcf_bias: pcf_bias(),
+            pcf_scale: pcf_scale(),
+            pcf_min_size: 0.0,
             post_pass: false,
             self_shadow: self_shadow(),
             light_samples: light_samples(),
@@ -285,6 +307,15 @@ fn map_bias() -> f64 {
 }
 fn pcf() -> u32 {
     1
+}
+fn pcf_samples() -> u32 {
+    crate::settings::PercentageCloser::default().samples
+}
+fn pcf_bias() -> [f64; 2] {
+    crate::settings::PercentageCloser::default().bias
+}
+fn pcf_scale() -> f64 {
+    crate::settings::PercentageCloser::default().scale
 }
 fn self_shadow() -> bool {
     true

@@ -25,6 +25,7 @@
 pub mod cube_faces;
 pub mod jittered_soft_shadows;
 pub mod light_volumes;
+pub mod percentage_closer;
 pub mod ray_cast;
 mod receivers;
 pub mod scanline_shadows;
@@ -185,8 +186,7 @@ pub fn prepare(
             scene,
             at,
             settings.map_resolution,
-            settings.map_bias,
-            settings.pcf,
+            shadow_map::Lookup::of(settings, index),
         )),
         ShadowMethod::ShadowPolygons => Arc::new(shadow_polygons::ShadowPolygons::new(scene, at)),
     }))

@@ -1,7 +1,5 @@
 //! Shadow depth maps: L. Williams, "Casting curved shadows on curved surfaces",
-//! Computer Graphics (SIGGRAPH '78) 12(3):270–274, 1978; percentage-closer filtering:
-//! W. T. Reeves, D. H. Salesin, R. L. Cook, "Rendering antialiased shadows with depth
-//! maps", Computer Graphics (SIGGRAPH '87) 21(4):283–291, 1987.
+//! Computer Graphics (SIGGRAPH '78) 12(3):270–274, 1978.
 //!
 //! First pass: the scene is rendered from the light into a depth image by the
 //! project's own scan-line rasterizer. A point light sees all around, so it gets six
@@ -9,8 +7,14 @@
 //! transformed into the light's frame (the cube face its direction falls in), its
 //! depth along that face's axis is compared with the depth stored in the texel it
 //! lands in, and it is in shadow when it lies farther than the stored depth plus a
-//! bias. With percentage-closer filtering the comparison is made against each texel
-//! of a k × k neighbourhood and the fraction that passes is the visibility.
+//! bias.
+//!
+//! How the tests are filtered (`map_filter`): `none` is Williams's single test;
+//! `box` tests each texel of a fixed k × k neighbourhood of the point's texel
+//! (`pcf = k`) and returns the fraction that passes, a box kernel indexed by the
+//! texel, so its result is the same all over a texel and coarse shadows stay blocky;
+//! `percentage-closer` is Reeves, Salesin & Cook's filter over the sample's
+//! footprint (`percentage_closer.rs`).
 //!
 //! Choices (Williams leaves the bias open): the bias is measured in texels and
 //! slope-scaled, `map_bias` × (1 + tan θ) × the size of one texel at the point's
@@ -18,17 +22,21 @@
 //! and the light: a surface the light grazes changes depth by tan θ texels from one
 //! texel to the next, which a constant bias cannot absorb. tan θ is capped at 50, so
 //! surfaces seen almost edge-on from the light keep some acne: the method's limit.
-//! PCF neighbourhoods stop at the face's border (clamped). Williams's
+//! Box neighbourhoods stop at the face's border (clamped). Williams's
 //! original applied the shadow to the finished image (`post_pass`, see `render`);
 //! the default looks the map up inside the light model. Scene keys:
-//! `[shadows] method = "shadow-map"`, `map_resolution`, `map_bias`, `pcf`, `post_pass`.
+//! `[shadows] method = "shadow-map"`, `map_resolution`, `map_bias`,
+//! `map_filter = "none" | "box" | "percentage-closer"`, `pcf`, `post_pass`.
 
 use super::cube_faces::{FACES, face_of, face_view};
+use super::percentage_closer::{footprint, percentage_closer};
 use super::{BandShadows, FrameShadows, LightShadows, per_sample};
+use crate::geometry::sampling::Stream;
 use crate::output::{Buffer, BufferData};
 use crate::raster::{View, VisibleSurface, rasterize_depth, screen_polygons};
 use crate::scene::Scene;
-use glam::DVec3;
+use crate::settings::{MapFilter, PercentageCloser, ShadowSettings};
+use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 /// One face of the cube: its view from the light and its depth image.
@@ -37,15 +45,99 @@ pub struct Face {
     pub depth: Vec<f32>,
 }
 
+/// A square depth image seen from the light: a face of the cube, or any image (the
+/// tests build them by hand). Texel (i, j), row-major from the top, covers
+/// [i, i + 1] × [j, j + 1] of map coordinates.
+#[derive(Clone, Copy)]
+pub struct DepthImage<'a> {
+    pub size: u32,
+    pub depth: &'a [f32],
+}
+
+impl DepthImage<'_> {
+    /// Whether a point at `depth` (its bias taken off) is not behind texel (i, j);
+    /// texels beyond the border are the border's.
+    pub fn passes(&self, i: i64, j: i64, depth: f64) -> bool {
+        let last = self.size as i64 - 1;
+        let (i, j) = (i.clamp(0, last), j.clamp(0, last));
+        depth <= self.depth[(j * self.size as i64 + i) as usize] as f64
+    }
+
+    /// The texel under map position `at` (the border's beyond it).
+    pub fn texel(&self, at: DVec2) -> (i64, i64) {
+        let last = self.size as i64 - 1;
+        let index = |v: f64| (v.floor() as i64).clamp(0, last);
+        (index(at.x), index(at.y))
+    }
+
+    /// The box filter: the fraction of the `kernel × kernel` texels centred on texel
+    /// (i, j) that pass at `depth` (kernel 1: Williams's single test).
+    pub fn box_filter(&self, (i, j): (i64, i64), kernel: u32, depth: f64) -> f32 {
+        let r = (kernel / 2) as i64;
+        let mut passed = 0;
+        for dj in -r..=r {
+            for di in -r..=r {
+                passed += self.passes(i + di, j + dj, depth) as u32;
+            }
+        }
+        passed as f32 / (kernel * kernel) as f32
+    }
+}
+
+/// Where a point falls in the map, and its depth test.
+#[derive(Clone, Copy, Debug)]
+pub struct MapPoint {
+    /// The cube face (index in `FACES`).
+    pub face: usize,
+    /// Its map position, in texels.
+    pub at: DVec2,
+    /// Its depth along the face's axis.
+    pub depth: f64,
+    /// 1 + tan θ: the slope scale of its bias.
+    pub slope: f64,
+    /// The size of one texel at its distance.
+    pub texel: f64,
+}
+
+impl MapPoint {
+    /// Its depth less a bias of `bias` slope-scaled texels.
+    pub fn less(&self, bias: f64) -> f64 {
+        self.depth - bias * self.slope * self.texel
+    }
+}
+
+/// How the second pass reads the map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lookup {
+    pub filter: MapFilter,
+    /// Williams's and the box's bias, in slope-scaled texels.
+    pub bias: f64,
+    /// The box's side.
+    pub kernel: u32,
+    pub percentage_closer: PercentageCloser,
+    /// The percentage-closer points' generator: the scene's seed and the light.
+    pub seed: u64,
+}
+
+impl Lookup {
+    /// The lookup `settings` ask for, for light `index`.
+    pub fn of(settings: &ShadowSettings, index: usize) -> Lookup {
+        Lookup {
+            filter: settings.map_filter,
+            bias: settings.map_bias,
+            kernel: settings.pcf,
+            percentage_closer: settings.percentage_closer,
+            seed: settings.seed ^ (index as u64).rotate_left(32),
+        }
+    }
+}
+
 /// The six depth images around a point light, and how the second pass reads them.
 pub struct CubeShadowMap {
     pub light: DVec3,
     pub resolution: u32,
     pub faces: Vec<Face>,
-    /// Depth bias, in slope-scaled texels.
-    pub bias: f64,
-    /// Percentage-closer kernel size (1: a single texel).
-    pub pcf: u32,
+    pub lookup: Lookup,
 }
 
 /// The faces' names in buffer names, in `FACES` order.
@@ -58,13 +150,7 @@ impl CubeShadowMap {
     /// The first pass: depth images of the scene from `light`. The six faces are
     /// built in parallel: each face's projection and edge table are serial, and
     /// overlapping them halves the pass on two cores.
-    pub fn build(
-        scene: &Scene,
-        light: DVec3,
-        resolution: u32,
-        bias: f64,
-        pcf: u32,
-    ) -> CubeShadowMap {
+    pub fn build(scene: &Scene, light: DVec3, resolution: u32, lookup: Lookup) -> CubeShadowMap {
         let faces = FACES
             .par_iter()
             .map(|&face| {
@@ -77,34 +163,40 @@ impl CubeShadowMap {
             light,
             resolution,
             faces,
-            bias,
-            pcf,
+            lookup,
         }
     }
 
-    /// The second pass at one point with unit normal `n`: the fraction of the
-    /// `kernel × kernel` texels around the point's texel whose stored depth is not
-    /// nearer than the point's depth less the bias (`bias` in slope-scaled texels).
-    pub fn lookup(&self, p: DVec3, n: DVec3, bias: f64, kernel: u32) -> f32 {
-        let face = &self.faces[face_of(p - self.light)];
-        let eye = face.view.to_eye(p);
-        let (x, y) = face.view.project(eye);
-        let size = self.resolution as i64;
-        let texel_at = |v: f64| (v.floor() as i64).clamp(0, size - 1);
-        let (i, j) = (texel_at(x), texel_at(y));
-        let texel = 2.0 * eye.z / self.resolution as f64;
+    /// Face `face`'s depth image.
+    pub fn image(&self, face: usize) -> DepthImage<'_> {
+        DepthImage {
+            size: self.resolution,
+            depth: &self.faces[face].depth,
+        }
+    }
+
+    /// Where point `p` with unit normal `n` falls in the map.
+    pub fn locate(&self, p: DVec3, n: DVec3) -> MapPoint {
+        let face = face_of(p - self.light);
+        let view = &self.faces[face].view;
+        let eye = view.to_eye(p);
+        let (x, y) = view.project(eye);
         let cos = n.dot((self.light - p).normalize()).abs().max(1e-12);
         let tan = ((1.0 - cos * cos).sqrt() / cos).min(MAX_SLOPE);
-        let depth = eye.z - bias * (1.0 + tan) * texel;
-        let r = (kernel / 2) as i64;
-        let mut passed = 0;
-        for dj in -r..=r {
-            for di in -r..=r {
-                let (u, v) = ((i + di).clamp(0, size - 1), (j + dj).clamp(0, size - 1));
-                passed += (depth <= face.depth[(v * size + u) as usize] as f64) as u32;
-            }
+        MapPoint {
+            face,
+            at: DVec2::new(x, y),
+            depth: eye.z,
+            slope: 1.0 + tan,
+            texel: 2.0 * eye.z / self.resolution as f64,
         }
-        passed as f32 / (kernel * kernel) as f32
+    }
+
+    /// The box filter at `p` (kernel 1: Williams's test), with the map's bias.
+    pub fn box_filter(&self, p: DVec3, n: DVec3, kernel: u32) -> f32 {
+        let at = self.locate(p, n);
+        let image = self.image(at.face);
+        image.box_filter(image.texel(at.at), kernel, at.less(self.lookup.bias))
     }
 }
 
@@ -140,20 +232,46 @@ struct MapFrame<'a> {
     view: &'a View,
 }
 
+impl MapFrame<'_> {
+    /// Reeves's filter at sample `k` of `band`, over its cell's footprint.
+    fn percentage_closer(&self, band: &VisibleSurface, k: usize, p: DVec3, n: DVec3) -> f32 {
+        let (map, lookup) = (self.map, &self.map.lookup);
+        let at = map.locate(p, n);
+        let cell = band.position_of(k);
+        let light_view = &map.faces[at.face].view;
+        let filter = &lookup.percentage_closer;
+        let region = footprint(self.view, cell, p, n, light_view, at.at)
+            .enlarged(filter.scale, filter.min_size);
+        // The sample's own stream, by its place on the whole grid: the same numbers
+        // whatever the bands and threads.
+        let index = cell.1 as u64 * band.width as u64 + cell.0 as u64;
+        let mut stream = Stream::new(lookup.seed, index);
+        percentage_closer(&map.image(at.face), &at, region, filter, &mut stream)
+    }
+}
+
 impl FrameShadows for MapFrame<'_> {
     fn band(&self, band: &VisibleSurface) -> BandShadows {
         let map = self.map;
+        let lookup = &map.lookup;
         let lit = per_sample(self.scene, self.view, band, map.light, |_, _, _| true);
         BandShadows::fraction(
             band.samples
                 .par_iter()
                 .zip(lit)
-                .map(|(sample, self_lit)| {
+                .enumerate()
+                .map(|(k, (sample, self_lit))| {
                     if self_lit == 0.0 {
-                        0.0
-                    } else {
-                        let n = self.scene.polygons[sample.polygon as usize].normal;
-                        map.lookup(sample.position, n, map.bias, map.pcf)
+                        return 0.0;
+                    }
+                    let (p, n) = (
+                        sample.position,
+                        self.scene.polygons[sample.polygon as usize].normal,
+                    );
+                    match lookup.filter {
+                        MapFilter::None => map.box_filter(p, n, 1),
+                        MapFilter::Box => map.box_filter(p, n, lookup.kernel),
+                        MapFilter::PercentageCloser => self.percentage_closer(band, k, p, n),
                     }
                 })
                 .collect(),
