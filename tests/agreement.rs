@@ -265,6 +265,89 @@ fn pixel_radiance_is_the_light_model_exactly() {
     assert!(lit.iter().all(|p| *p == radiance));
 }
 
+/// A glossy floor under a point light, the eye near the mirror direction: each pixel
+/// has radiance (ρ/π + k_s (e + 2)/(2π) cosᵉ α) · I cos θ / r² (Phong's lobe,
+/// energy-normalised), computed here by hand with α measured from the eye's mirror
+/// direction (the light model measures it from the light's).
+#[test]
+fn specular_pixel_radiance_is_the_normalised_phong_lobe() {
+    let (rho, k_s, e, intensity) = (0.3f64, 0.6f64, 20.0f64, 10.0f64);
+    let light = DVec3::new(0.3, 2.0, -2.0);
+    let scene = common::scene_from_text(
+        &format!(
+            r#"
+            [camera]
+            eye = [0.0, 1.5, 2.5]
+            look_at = [0.0, 0.0, -0.5]
+            fov_y = 50.0
+            width = 64
+            height = 64
+            [render]
+            shading = "phong"
+            [shadows]
+            method = "none"
+            [materials.gloss]
+            diffuse = [{rho}, {rho}, {rho}]
+            specular = [{k_s}, {k_s}, {k_s}]
+            exponent = {e}
+            [[lights]]
+            type = "point"
+            position = [{}, {}, {}]
+            intensity = [{intensity}, {intensity}, {intensity}]
+            [[objects]]
+            shape = "quad"
+            material = "gloss"
+            transform = [{{ scale = [8.0, 1.0, 8.0] }}]
+            "#,
+            light.x, light.y, light.z
+        ),
+        &[],
+    );
+    let (view, surface) = visible_surface(&scene);
+    let image = render(&scene).unwrap();
+    // Also kept: the pixel nearest the mirror direction (cos α there, and the two
+    // terms) and the largest relative error.
+    let (mut checked, mut closest, mut worst) = (0, (0.0f64, 0.0, 0.0), 0.0f64);
+    for (s, pixel) in surface.samples.iter().zip(&image.pixels) {
+        if s.is_empty() {
+            continue;
+        }
+        let n = DVec3::Y;
+        let to_light = light - s.position;
+        let r2 = to_light.length_squared();
+        let l = to_light / r2.sqrt();
+        let v = (view.eye - s.position).normalize();
+        let eye_mirror = 2.0 * n.dot(v) * n - v;
+        let cos_alpha = eye_mirror.dot(l).max(0.0);
+        let diffuse = rho / PI;
+        let specular = k_s * (e + 2.0) / (2.0 * PI) * cos_alpha.powf(e);
+        let expected = (diffuse + specular) * intensity * n.dot(l) / r2;
+        let error = (pixel.x as f64 - expected).abs() / expected;
+        assert!(
+            error <= 1e-5,
+            "{pixel} vs {expected} at {} (cos α = {cos_alpha})",
+            s.position
+        );
+        worst = worst.max(error);
+        if cos_alpha > closest.0 {
+            closest = (cos_alpha, specular, diffuse);
+        }
+        checked += 1;
+    }
+    assert!(checked > 2000, "{checked} floor pixels");
+    // The highlight is in view, and there the lobe outweighs the diffuse term.
+    let (cos_alpha, specular, diffuse) = closest;
+    println!(
+        "{checked} floor pixels, worst relative error {worst:.1e}; nearest the mirror \
+         direction cos α = {cos_alpha:.6}, specular {specular:.4} vs diffuse {diffuse:.4}"
+    );
+    assert!(
+        cos_alpha > 0.9999,
+        "no pixel near the mirror direction: {cos_alpha}"
+    );
+    assert!(specular > 20.0 * diffuse, "{specular} vs {diffuse}");
+}
+
 /// Pixels lit by the quad light: radiance ρ/π · L · Φ with Φ by quadrature (the
 /// unoccluded light: the entry's shadows off).
 #[test]

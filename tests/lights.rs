@@ -375,3 +375,55 @@ fn distant_light_model() {
         assert!((v - expected).abs() < 1e-6, "{degrees}: {v}");
     }
 }
+
+/// The specular albedo of Phong's normalised lobe, ∫ f_s cos θ_o dω_o over the
+/// hemisphere as a fraction of k_s, for light arriving at `incidence` degrees from
+/// the normal: by the midpoint
+/// rule in (θ_o, φ_o), each direction's radiance taken from the light model under a
+/// distant light of unit irradiance.
+fn specular_albedo(exponent: f32, incidence: f64) -> f64 {
+    let gloss = Reflectance {
+        diffuse: Vec3::ZERO,
+        specular: Vec3::splat(0.5),
+        exponent,
+    };
+    let light = Light::Distant(DistantLight {
+        direction: -tilted(incidence),
+        irradiance: Vec3::ONE,
+        name: None,
+    });
+    let cos_incidence = incidence.to_radians().cos();
+    let (steps, turns) = (2000, 400);
+    let (dt, dp) = (PI / 2.0 / steps as f64, 2.0 * PI / turns as f64);
+    let mut sum = 0.0;
+    for i in 0..steps {
+        let theta = (i as f64 + 0.5) * dt;
+        let (st, ct) = theta.sin_cos();
+        for j in 0..turns {
+            let phi = (j as f64 + 0.5) * dp;
+            let point = SurfacePoint {
+                position: DVec3::ZERO,
+                normal: DVec3::Y,
+                to_eye: DVec3::new(st * phi.cos(), ct, st * phi.sin()),
+            };
+            // Radiance = f_s · E cos θ_i: divide out the incident cosine.
+            let f = reflected(&point, &gloss, &light).x as f64 / cos_incidence;
+            sum += f * ct * st * dt * dp;
+        }
+    }
+    sum / 0.5
+}
+
+/// Phong's lobe normalised by (e + 2)/(2π) reflects exactly k_s of the light that
+/// arrives along the normal, whatever the exponent, and less at oblique incidence
+/// (part of the lobe falls below the horizon): the material never reflects more
+/// than it receives.
+#[test]
+fn the_normalised_phong_lobe_reflects_k_s_at_normal_incidence() {
+    for e in [1.0, 5.0, 20.0, 100.0] {
+        let (albedo, oblique) = (specular_albedo(e, 0.0), specular_albedo(e, 60.0));
+        println!("exponent {e}: specular albedo {albedo:.6} of k_s, {oblique:.6} at 60°");
+        assert!((albedo - 1.0).abs() < 1e-5, "exponent {e}: {albedo}");
+        assert!(oblique < 1.0, "exponent {e} at 60°: {oblique}");
+    }
+}

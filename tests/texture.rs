@@ -4,6 +4,7 @@
 //! normals against the normals of the truly displaced surface.
 
 use glam::{DVec2, DVec3, Vec3};
+use lumiere::geometry::sampling::Stream;
 use lumiere::raster::View;
 use lumiere::render::visible_surface;
 use lumiere::scene::resources::Directory;
@@ -15,6 +16,7 @@ use lumiere::texture::{Filter, Texels, Texture, Wrap};
 use lumiere::{Image, catalogue, load_scene, render};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
+use std::sync::Arc;
 
 fn mapping(surface: IntermediateSurface, frame: Frame, height: f64) -> Mapping {
     Mapping {
@@ -175,6 +177,52 @@ fn perspective_correct_coordinates_are_exact_and_affine_ones_are_not() {
     assert!(error < 1e-6, "fronto-parallel affine error {error}");
 }
 
+/// The footprint the filters read, [∂(u, v)/∂x, ∂(u, v)/∂y] at each pixel centre, is
+/// the derivative of the exact screen-to-texture map (central differences of the
+/// ray–plane intersection and the mapping). The camera is rolled so that depth
+/// varies along the rows as well as down the columns.
+#[test]
+fn footprints_are_the_screen_derivatives_of_the_exact_map() {
+    let scene = textured_quad(
+        [0.5, 1.5, 4.0],
+        [0.0, 0.0, -6.0],
+        [0.4, 1.0, 0.0],
+        "perspective",
+    );
+    let (view, surface) = visible_surface(&scene);
+    let mapping = scene.materials[0].mapping.as_ref().unwrap();
+    let frame = &scene.objects[0].frame;
+    let polygon = &scene.polygons[0];
+    let origin = polygon.vertices[0].position;
+    let exact = |x: f64, y: f64| {
+        let d = view.ray(x, y);
+        let t = (origin - view.eye).dot(polygon.normal) / d.dot(polygon.normal);
+        let p = frame.to_object.transform_point3(view.eye + d * t);
+        mapping.uv(p, DVec3::Y, DVec3::ZERO, DVec3::Y)
+    };
+    let h = 1e-3;
+    let (mut worst, mut checked) = (0.0f64, 0);
+    for k in 0..surface.samples.len() {
+        if surface.samples[k].is_empty() {
+            continue;
+        }
+        let (x, y) = surface.position_of(k);
+        let (x, y) = (x as f64 + 0.5, y as f64 + 0.5);
+        let numeric = [
+            (exact(x + h, y) - exact(x - h, y)) / (2.0 * h),
+            (exact(x, y + h) - exact(x, y - h)) / (2.0 * h),
+        ];
+        for (got, want) in surface.uv_derivatives(k).iter().zip(numeric) {
+            let e = (*got - want).length() / want.length();
+            assert!(e < 1e-6, "pixel ({x}, {y}): {got} vs {want}");
+            worst = worst.max(e);
+        }
+        checked += 1;
+    }
+    println!("{checked} pixels: derivatives within {worst:.1e} of the exact map's");
+    assert!(checked > 4000, "{checked} pixels");
+}
+
 #[test]
 fn exact_mode_evaluates_the_mapping_at_each_point() {
     // On a sphere, a spherical mapping interpolated from the vertices is only
@@ -322,6 +370,209 @@ fn trilinear_mip_mapping_is_three_times_closer_to_the_filtered_image() {
         "trilinear {trilinear} is not 3x below point sampling {point}"
     );
     assert!(summed < point, "summed-area {summed} vs point {point}");
+}
+
+/// Texels with detail at every scale: six octaves of white noise in [0, 1], octave k
+/// constant over blocks of 2^k × 2^k texels, each octave shifted by its own offset
+/// (so that most do not line up with the pyramid's 2^k grid). Whatever a pixel's
+/// footprint, averaging over too much or too little of it shows.
+fn octave_noise(side: u32) -> Texels {
+    let octaves = 6;
+    let mut texels = vec![0.0f64; (side * side) as usize];
+    for k in 0..octaves {
+        let (block, offset) = (1u32 << k, (7 * k + 3) % side);
+        let cells = side / block;
+        let mut stream = Stream::new(41, k as u64);
+        let values: Vec<f64> = (0..cells * cells).map(|_| stream.next_f64()).collect();
+        for j in 0..side {
+            for i in 0..side {
+                let (a, b) = ((i + offset) % side / block, (j + 2 * offset) % side / block);
+                texels[(j * side + i) as usize] +=
+                    values[(b * cells + a) as usize] / octaves as f64;
+            }
+        }
+    }
+    Texels {
+        width: side,
+        height: side,
+        texels: texels.into_iter().map(|t| Vec3::splat(t as f32)).collect(),
+    }
+}
+
+/// Where the textured plane is seen from.
+#[derive(Clone, Copy, Debug)]
+enum PlaneView {
+    /// Low over the plane: footprints from half a texel under the eye to some 35
+    /// texels near the far edge, elongated up to 12:1 along the receding axis.
+    Grazing,
+    /// From high above, looking steeply down: footprints of 0.9 to 3.8 texels, at most
+    /// 2:1, where the finest levels (and the blend between them) matter most.
+    Steep,
+}
+
+/// A plane carrying `texels` (grey, one tile per 5.12 units, turned 30° against the
+/// view) under a distant light of irradiance π from straight above, so that each
+/// pixel's radiance is the filtered texture value itself.
+fn filtered_plane(texels: &Texels, filter: Filter, view: PlaneView) -> (Scene, Image) {
+    let (eye, look_at) = match view {
+        PlaneView::Grazing => ([0.0, 1.0, 0.5], [0.0, 0.0, -3.0]),
+        PlaneView::Steep => ([0.0, 4.0, 0.0], [0.0, 0.0, -3.0]),
+    };
+    let mut scene = scene_from(&format!(
+        r#"
+        [camera]
+        eye = {eye:?}
+        look_at = {look_at:?}
+        fov_y = 50.0
+        width = 128
+        height = 96
+        [shadows]
+        method = "none"
+        [textures.t]
+        procedural = "checkerboard"
+        [materials.m]
+        diffuse = [1.0, 1.0, 1.0]
+        diffuse_texture = "t"
+        mapping = {{ surface = "plane", axis = [0.0, 1.0, 0.0], reference = [1.0, 0.0, 0.0], size = [0.512, 0.512] }}
+        [[lights]]
+        type = "distant"
+        direction = [0.0, -1.0, 0.0]
+        irradiance = [{PI}, {PI}, {PI}]
+        [[objects]]
+        shape = "quad"
+        material = "m"
+        transform = [{{ scale = [10.0, 1.0, 10.0] }}, {{ rotate = {{ axis = [0.0, 1.0, 0.0], degrees = 30.0 }} }}, {{ translate = [0.0, 0.0, -5.5] }}]
+        "#
+    ));
+    scene.textures[0] = Arc::new(Texture::new(
+        "octave noise",
+        texels.clone(),
+        None,
+        Wrap::Repeat,
+        filter,
+    ));
+    let image = render(&scene).unwrap();
+    (scene, image)
+}
+
+/// Per pixel showing the plane, the exact box filter: the mean of the texture (its
+/// texels as a piecewise-constant function) over the pixel's footprint, by brute
+/// force: a grid of sub-pixel points, at least four per texel the footprint spans
+/// along each screen axis, each carried onto the plane by its own ray and through the
+/// mapping. `None` where the pixel centre misses the plane.
+fn box_filtered_footprints(scene: &Scene, texels: &Texels) -> Vec<Option<f64>> {
+    let (view, surface) = visible_surface(scene);
+    let mapping = scene.materials[0].mapping.as_ref().unwrap();
+    let frame = &scene.objects[0].frame;
+    let polygon = &scene.polygons[0];
+    let origin = polygon.vertices[0].position;
+    let texel_size = DVec2::new(texels.width as f64, texels.height as f64);
+    (0..surface.samples.len())
+        .map(|k| {
+            if surface.samples[k].is_empty() {
+                return None;
+            }
+            let (x, y) = surface.position_of(k);
+            let [dx, dy] = surface.uv_derivatives(k);
+            let count = |d: DVec2| (4.0 * (d * texel_size).length()).ceil().clamp(4.0, 256.0);
+            let (nx, ny) = (count(dx), count(dy));
+            let mut sum = 0.0;
+            for j in 0..ny as u32 {
+                for i in 0..nx as u32 {
+                    let d = view.ray(
+                        x as f64 + (i as f64 + 0.5) / nx,
+                        y as f64 + (j as f64 + 0.5) / ny,
+                    );
+                    let t = (origin - view.eye).dot(polygon.normal) / d.dot(polygon.normal);
+                    let p = frame.to_object.transform_point3(view.eye + d * t);
+                    let uv = mapping.uv(p, DVec3::Y, DVec3::ZERO, DVec3::Y);
+                    sum += texels.nearest(uv, Wrap::Repeat).x as f64;
+                }
+            }
+            Some(sum / (nx * ny))
+        })
+        .collect()
+}
+
+/// The RMSE of `filter`'s rendering of the plane against the exact box filter.
+fn footprint_rmse(filter: Filter, view: PlaneView) -> f64 {
+    let texels = octave_noise(128);
+    let (scene, image) = filtered_plane(&texels, filter, view);
+    let reference = box_filtered_footprints(&scene, &texels);
+    let errors: Vec<f64> = reference
+        .iter()
+        .zip(&image.pixels)
+        .filter_map(|(r, p)| r.map(|r| p.x as f64 - r))
+        .collect();
+    assert!(
+        errors.len() > 8000,
+        "{} pixels show the plane",
+        errors.len()
+    );
+    (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt()
+}
+
+/// `filter`'s RMSE against the box filter is within 15% of the value measured (both
+/// ways: filtering too much and too little fail alike), from each view.
+fn assert_rmse_near(filter: Filter, measured: [(PlaneView, f64); 2]) {
+    for (view, measured) in measured {
+        let rmse = footprint_rmse(filter, view);
+        println!(
+            "{filter:?}, {view:?} view: RMSE {rmse:.4} against the box filter (measured {measured})"
+        );
+        assert!(
+            (rmse - measured).abs() <= 0.15 * measured,
+            "{filter:?}, {view:?} view: RMSE {rmse:.4} against the box filter, not within 15% of {measured}"
+        );
+    }
+}
+
+/// Williams's trilinear lookup against the box filter over the footprint, measured
+/// at 0.0278 (grazing) and 0.0178 (steep). Mutations and what they gave: blend weight
+/// reversed 0.0309 (+11%) grazing, 0.0241 (+35%) steep; level one too fine 0.0208
+/// (−25%: less blur where the square footprint over-blurs) grazing; one too coarse
+/// 0.0433 (+56%) grazing; the footprint's shorter side taken for its size instead of
+/// the longer 0.0304 (+9%) grazing, 0.0107 (−40%) steep.
+#[test]
+fn trilinear_mip_mapping_tracks_the_box_filtered_footprint() {
+    assert_rmse_near(
+        Filter::Trilinear,
+        [(PlaneView::Grazing, 0.0278), (PlaneView::Steep, 0.0178)],
+    );
+}
+
+/// The nearest level alone, measured at 0.0292 (grazing) and 0.0213 (steep).
+/// Mutations: the level below λ instead of the nearest 0.0236 (−19%) grazing; level
+/// one too coarse 0.0440 (+51%) grazing; the footprint's shorter side 0.0314 (+8%)
+/// grazing, 0.0140 (−34%) steep.
+#[test]
+fn nearest_level_mip_mapping_tracks_the_box_filtered_footprint() {
+    assert_rmse_near(
+        Filter::MipNearest,
+        [(PlaneView::Grazing, 0.0292), (PlaneView::Steep, 0.0213)],
+    );
+}
+
+/// Crow's summed-area table over the footprint's bounding box, measured at 0.0180
+/// (grazing) and 0.0144 (steep). Mutations: the box twice too large 0.0360 (+100%)
+/// grazing; half too small 0.0218 (+21%) grazing.
+#[test]
+fn summed_area_table_tracks_the_box_filtered_footprint() {
+    assert_rmse_near(
+        Filter::SummedArea,
+        [(PlaneView::Grazing, 0.0180), (PlaneView::Steep, 0.0144)],
+    );
+}
+
+/// Point sampling ignores the footprint: measured at 0.0518 (grazing) and 0.0470
+/// (steep), two to three times further from the box filter than the pre-filtered
+/// lookups.
+#[test]
+fn point_sampling_is_far_from_the_box_filtered_footprint() {
+    assert_rmse_near(
+        Filter::Nearest,
+        [(PlaneView::Grazing, 0.0518), (PlaneView::Steep, 0.0470)],
+    );
 }
 
 /// A smooth height with exact derivatives: B(u, v) = a sin(k u + c) cos(l v).
