@@ -24,8 +24,10 @@
 //! the shared edge.
 //! The debris this leaves at that scale is swept from the results: points closer
 //! than 1e-9 of the size are merged and contours thinner than that (mean width
-//! 2·area/perimeter) dropped, so that repeated clipping, as in hidden-surface
-//! removal, never meets features as small as its own perturbation. A ∩ B and A − B
+//! 2·area/perimeter) dropped, and spikes (a vertex where a contour runs out and
+//! back along itself within that distance) cut off, so that repeated clipping, as
+//! in hidden-surface removal, never meets features as small as its own
+//! perturbation. A ∩ B and A − B
 //! add up to A within that sweep (a relative 1e-8 at most; 1e-6 after the rare
 //! retries below, whose perturbations are larger). Should a perturbation
 //! still meet a near-degeneracy, which shows as parts that do not add up, an inside
@@ -225,6 +227,7 @@ fn sweep(region: Region, tolerance: f64) -> Region {
             while kept.len() > 1 && kept[0].distance(kept[kept.len() - 1]) < tolerance {
                 kept.pop();
             }
+            remove_spikes(&mut kept, tolerance);
             let perimeter: f64 = (0..kept.len())
                 .map(|i| kept[i].distance(kept[(i + 1) % kept.len()]))
                 .sum();
@@ -232,6 +235,50 @@ fn sweep(region: Region, tolerance: f64) -> Region {
             thick.then_some(kept)
         })
         .collect()
+}
+
+/// Removes the contour's spikes: vertices where it runs out and comes back along
+/// itself, so that the next vertex lies within `tolerance` of the edge just
+/// walked. A spike encloses no area, but its two edges, moved together by the
+/// perturbation, would be crossed twice at once by any edge that meets them.
+fn remove_spikes(contour: &mut Vec<DVec2>, tolerance: f64) {
+    let mut i = 0;
+    let mut unchanged = 0;
+    while contour.len() >= 3 && unchanged < contour.len() {
+        let n = contour.len();
+        let (prev, vertex, next) = (
+            contour[(i + n - 1) % n],
+            contour[i % n],
+            contour[(i + 1) % n],
+        );
+        let folds_back = distance_to_segment(next, prev, vertex) < tolerance
+            || distance_to_segment(prev, vertex, next) < tolerance;
+        if folds_back && vertex.distance(prev) >= tolerance && vertex.distance(next) >= tolerance {
+            contour.remove(i % n);
+            // Merge the two ends the spike leaves side by side.
+            let n = contour.len();
+            let at = (i + n - 1) % n;
+            if n >= 2 && contour[at].distance(contour[(at + 1) % n]) < tolerance {
+                contour.remove((at + 1) % n);
+            }
+            unchanged = 0;
+            i = i.saturating_sub(1);
+        } else {
+            unchanged += 1;
+            i += 1;
+        }
+    }
+}
+
+/// Distance from `p` to the segment from `a` to `b`.
+fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let ab = b - a;
+    let t = if ab.length_squared() > 0.0 {
+        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + t * ab)
 }
 
 /// One vertex of a contour list: an original vertex, or an intersection linked to
@@ -493,6 +540,37 @@ mod tests {
             DVec2::new(x + side, y + side),
             DVec2::new(x, y + side),
         ]
+    }
+
+    /// A spike (out to a point and back along the same line, within the tolerance)
+    /// is cut off; a sharp corner, however sharp, that encloses more than the
+    /// tolerance is kept.
+    #[test]
+    fn spikes_are_removed_and_sharp_corners_kept() {
+        let p = DVec2::new;
+        let mut spiked = vec![
+            p(0.0, 0.0),
+            p(1.0, 0.0),
+            p(1.0, 0.5),
+            p(3.0, 0.5),
+            p(1.0, 0.5 + 1e-8),
+            p(1.0, 1.0),
+            p(0.0, 1.0),
+        ];
+        remove_spikes(&mut spiked, 1e-6);
+        assert_eq!(spiked.len(), 5, "{spiked:?}");
+        assert!((contour_area(&spiked) - 1.0).abs() < 1e-7);
+        let mut sharp = vec![
+            p(0.0, 0.0),
+            p(1.0, 0.0),
+            p(1.0, 0.5),
+            p(3.0, 0.5),
+            p(1.0, 0.5 + 1e-4),
+            p(1.0, 1.0),
+            p(0.0, 1.0),
+        ];
+        remove_spikes(&mut sharp, 1e-6);
+        assert_eq!(sharp.len(), 7);
     }
 
     /// Degenerate operands (repeated and collinear vertices, slivers, coordinates

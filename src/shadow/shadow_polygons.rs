@@ -10,12 +10,15 @@
 //! polygon database, exact, and measurable: `lumiere shadow-polygons` lists the lit
 //! and shadowed polygons of every receiver with their areas.
 //!
-//! Hidden-surface removal (Weiler & Atherton 1977): the polygons, sorted nearest
-//! first, are taken in turn; the front one clips every other into the part inside
-//! its outline and the part outside. Inside parts behind it are hidden. An inside
-//! part in front of it (a sort error, or interpenetration: it is split where the two
-//! depths cross) hides that much of it and carries on. The front polygon's remaining
-//! area is emitted, and the process repeats on the rest.
+//! Hidden-surface removal (Weiler & Atherton 1977): the polygons are sorted once,
+//! roughly, nearest first. The first of the list is the clip polygon: every polygon
+//! of the list is clipped against it into an inside list and an outside list, both
+//! keeping the list's order. Inside pieces wholly behind the clip polygon are hidden.
+//! An inside piece in front of it somewhere shows the sort was wrong there: the
+//! process recurses with that piece as the clip polygon over the inside list, a
+//! window within the window, and a stack of clip polygons guards the recursion
+//! against cyclic overlap. What is left of the clip polygon is visible; the outside
+//! list, still in order, is the next work list.
 //!
 //! Choices: a point light inside the scene sees all around, which a single viewing
 //! frustum cannot hold (the paper's examples are outside the environment), so the
@@ -150,52 +153,121 @@ pub fn lit_polygons(scene: &Scene, light: DVec3) -> Vec<Vec<DetailPolygon>> {
     lit
 }
 
-/// Weiler–Atherton hidden-surface removal: the visible part of every piece.
+/// Weiler & Atherton's hidden-surface removal: the visible part of every piece.
+///
+/// The preliminary depth sort is done once; from then on every list is cut into
+/// inside and outside lists that keep their order, so the work list stays sorted
+/// without sorting it again. The first piece of the list is the clip polygon of a
+/// window; what lies outside it is the next work list.
 fn hidden_surface(mut pieces: Vec<Piece>) -> Vec<Piece> {
-    let sliver = 1e-9 * (FACE_SIZE as f64).powi(2);
-    let mut visible = Vec::new();
     sort_nearest_first(&mut pieces);
+    let mut removal = Removal {
+        sliver: 1e-9 * (FACE_SIZE as f64).powi(2),
+        stack: Vec::new(),
+        visible: Vec::new(),
+    };
     while !pieces.is_empty() {
-        let front = pieces.remove(0);
-        let (lo, hi) = front.bounds;
-        let mut shown = front.region.clone();
-        let mut rest = Vec::with_capacity(pieces.len());
-        for piece in pieces.drain(..) {
+        pieces = removal.window(pieces, 0);
+    }
+    removal.visible
+}
+
+/// The state of one hidden-surface removal: the stack of clip polygons (their
+/// source polygons) of the windows being worked on, and the pieces found visible.
+struct Removal {
+    sliver: f64,
+    stack: Vec<u32>,
+    visible: Vec<Piece>,
+}
+
+impl Removal {
+    /// One window, whose clip polygon is `list[clip]`: every other piece of the list
+    /// is clipped against a copy of it into an inside and an outside list. Inside
+    /// pieces wholly behind the clip polygon are hidden and removed. An inside piece
+    /// in front of it somewhere means the preliminary sort was wrong there: that
+    /// piece becomes the clip polygon of a window within this one, over the inside
+    /// list, which hands back the inside list less that piece's area; this repeats
+    /// until nothing inside lies in front. What remains of the clip polygon is then
+    /// visible. Returns the outside list, in the order of `list`.
+    ///
+    /// The paper guards its recursion against cyclic overlap with the stack of clip
+    /// polygons; it leaves open what is done when the polygon in front is already on
+    /// the stack (which, for planar polygons, means their depths cross in this
+    /// window: interpenetration, or a cycle of several). Our choice: that piece is
+    /// cut along the line where its depth crosses the clip polygon's, the part behind
+    /// is hidden, and the part in front, wholly in front, becomes the next window's
+    /// clip polygon. The recursion ends: a window within a window either takes a
+    /// polygon not yet on the stack, or one wholly in front of its clip polygon over
+    /// its area, and no chain of windows each wholly in front of the last can come
+    /// back to a polygon in it; each round of the loop removes a piece's area.
+    fn window(&mut self, list: Vec<Piece>, clip: usize) -> Vec<Piece> {
+        let clipper = list[clip].clone();
+        let (lo, hi) = clipper.bounds;
+        self.stack.push(clipper.source);
+        let mut inside = Vec::new();
+        let mut outside = Vec::with_capacity(list.len());
+        for (i, piece) in list.into_iter().enumerate() {
+            if i == clip {
+                inside.push(piece);
+                continue;
+            }
             let (plo, phi) = piece.bounds;
             if plo.x > hi.x || plo.y > hi.y || phi.x < lo.x || phi.y < lo.y {
-                rest.push(piece);
+                outside.push(piece);
                 continue;
             }
-            let (inside, outside) = weiler_atherton::clip(&piece.region, &front.region);
-            if area(&outside) > sliver {
-                rest.push(piece.with_region(outside));
+            let (within, beyond) = weiler_atherton::clip(&piece.region, &clipper.region);
+            if area(&within) > self.sliver {
+                inside.push(piece.with_region(within));
             }
-            if area(&inside) <= sliver {
-                continue;
-            }
-            // The part of the inside piece nearer than the front polygon.
-            let (p, f) = (piece.plane, front.plane);
-            let ahead: Region = inside
-                .iter()
-                .map(|c| {
-                    sutherland_hodgman::clip(c, |q| {
-                        p.zeta(q.x, q.y) - f.zeta(q.x, q.y) * (1.0 + 1e-9)
-                    })
-                })
-                .filter(|c| c.len() >= 3)
-                .collect();
-            if area(&ahead) > sliver {
-                shown = weiler_atherton::clip(&shown, &ahead).1;
-                rest.push(piece.with_region(ahead));
+            if area(&beyond) > self.sliver {
+                outside.push(piece.with_region(beyond));
             }
         }
-        if area(&shown) > sliver {
-            visible.push(front.with_region(shown));
+        loop {
+            // Remove what lies wholly behind; the first piece in front is next.
+            let mut in_front = None;
+            let mut kept = Vec::with_capacity(inside.len());
+            for piece in inside {
+                if piece.source != clipper.source {
+                    let Some(ahead) = self.ahead(&piece, &clipper) else {
+                        continue;
+                    };
+                    in_front.get_or_insert((kept.len(), ahead));
+                }
+                kept.push(piece);
+            }
+            inside = kept;
+            let Some((at, ahead)) = in_front else {
+                break;
+            };
+            if self.stack.contains(&inside[at].source) {
+                inside[at] = inside[at].with_region(ahead);
+            }
+            inside = self.window(inside, at);
         }
-        pieces = rest;
-        sort_nearest_first(&mut pieces);
+        self.visible.extend(inside);
+        self.stack.pop();
+        outside
     }
-    visible
+
+    /// The part of `piece` nearer the light than `clipper`'s plane, if it is more
+    /// than a sliver. Both are planar, so a piece none of whose vertices is nearer
+    /// lies wholly behind.
+    fn ahead(&self, piece: &Piece, clipper: &Piece) -> Option<Region> {
+        let (p, f) = (piece.plane, clipper.plane);
+        let nearer = |q: &DVec2| p.zeta(q.x, q.y) - f.zeta(q.x, q.y) * (1.0 + 1e-9);
+        if !piece.region.iter().flatten().any(|q| nearer(q) > 0.0) {
+            return None;
+        }
+        let ahead: Region = piece
+            .region
+            .iter()
+            .map(|c| sutherland_hodgman::clip(c, nearer))
+            .filter(|c| c.len() >= 3)
+            .collect();
+        (area(&ahead) > self.sliver).then_some(ahead)
+    }
 }
 
 fn sort_nearest_first(pieces: &mut [Piece]) {
