@@ -1039,6 +1039,73 @@ fn a_closed_pipe_ends_quietly() {
     }
 }
 
+/// A reader that stops after the first line (`compare … | head -1`) does not hide a
+/// failed threshold: the verdict is still exit status 1, with its line.
+#[test]
+fn a_closed_pipe_does_not_hide_a_failed_comparison() {
+    let dir = workspace(&[]);
+    for (name, exposure) in [("a.png", "1.0"), ("b.png", "2.0")] {
+        let set = format!("render.exposure={exposure}");
+        let run = lumiere(
+            &[
+                "render",
+                "cornell-box",
+                "--width",
+                "16",
+                "--height",
+                "16",
+                "--set",
+                &set,
+                "-o",
+                name,
+            ],
+            dir.path(),
+        );
+        assert_eq!(run.code, 0, "{}", run.stderr);
+    }
+    let run = lumiere_into_closed_pipe(
+        &["compare", "a.png", "b.png", "--max-rmse", "0.001"],
+        dir.path(),
+    );
+    assert_eq!(run.code, 1, "{}", run.stderr);
+    assert!(
+        run.stderr.starts_with("error: ") && run.stderr.contains("--max-rmse"),
+        "{}",
+        run.stderr
+    );
+}
+
+/// A channel that is not a number in one image only is a difference of the whole
+/// range, not a black pixel equal to the other image's black.
+#[test]
+fn compare_counts_a_nan_as_a_difference() {
+    let dir = workspace(&[]);
+    let pfm = |name: &str, value: f32| {
+        let mut bytes = b"PF\n1 1\n-1.0\n".to_vec();
+        for _ in 0..3 {
+            bytes.extend(value.to_le_bytes());
+        }
+        std::fs::write(dir.path().join(name), bytes).unwrap();
+    };
+    pfm("black.pfm", 0.0);
+    pfm("nan.pfm", f32::NAN);
+    let run = lumiere(
+        &["compare", "black.pfm", "nan.pfm", "--max-difference", "2"],
+        dir.path(),
+    );
+    assert_eq!(run.code, 1, "{}", run.stderr);
+    assert!(
+        run.stdout.contains("max difference  255/255"),
+        "{}",
+        run.stdout
+    );
+    let same = lumiere(
+        &["compare", "nan.pfm", "nan.pfm", "--max-difference", "0"],
+        dir.path(),
+    );
+    assert_eq!(same.code, 0, "{}", same.stderr);
+}
+
 /// `compare` as a regression test's check: the figures, then one error line naming the
 /// threshold exceeded and the measured value; 0 within, 1 beyond, 2 for bad input.
 #[test]
@@ -1307,6 +1374,28 @@ fn counts_that_drive_allocations_are_checked_first() {
             &[("s.toml", &text)],
             &["s.toml"],
             "objects[1]: resolution must be from",
+        );
+    }
+    // A budget so large that its count of bytes would overflow is refused, not
+    // turned into no limit at all.
+    for key in ["radiosity", "shadows"] {
+        let dir = workspace(&[]);
+        let set = format!("{key}.max_memory_mb=17592186044416");
+        let run = lumiere(
+            &[
+                "render",
+                "radiosity-shooting",
+                "--set",
+                &set,
+                "-o",
+                "out.png",
+            ],
+            dir.path(),
+        );
+        assert_clear_error(
+            &run,
+            &format!("{key}.max_memory_mb must be from 1 to 1048576 (1 TiB), got 17592186044416"),
+            &dir.path().join("out.png"),
         );
     }
     let text = scene(
@@ -1737,4 +1826,19 @@ fn silent_results_are_warned_about() {
     let fine = workspace(&[("s.toml", &scene(CAMERA, ""))]);
     let run = lumiere(&["render", "s.toml", "-o", "out.png"], fine.path());
     assert_eq!((run.code, run.stderr.as_str()), (0, ""));
+}
+
+/// Writing into a directory that does not exist names that directory and the
+/// system's reason, not the temporary file the image is first written to.
+#[test]
+fn a_missing_output_directory_is_named_without_temporary_names() {
+    let dir = workspace(&[("s.toml", &scene(CAMERA, ""))]);
+    let out = dir.path().join("nodir/sub/x.png");
+    let run = lumiere(&["render", "s.toml", "-o", "nodir/sub/x.png"], dir.path());
+    assert_clear_error(&run, "nodir/sub", &out);
+    assert!(
+        run.stderr.contains("No such file or directory") && !run.stderr.contains(".tmp"),
+        "{}",
+        run.stderr
+    );
 }

@@ -67,17 +67,8 @@ pub fn run(args: Args) -> Result<()> {
             1.0,
         )?;
     }
-    if args.json {
-        outln!("{}", serde_json::to_string_pretty(&c)?)?;
-    } else {
-        outln!("rmse            {:.6}", c.rmse)?;
-        outln!("psnr            {:.2} dB", c.psnr)?;
-        outln!("max difference  {}/255", c.max_difference)?;
-        outln!(
-            "differing       {:.4}% of pixels (> 2/255)",
-            100.0 * c.differing_share
-        )?;
-    }
+    let printed = print(&c, args.json);
+    // The verdict stands even when the reader of the figures has gone (`| head -1`).
     let exceeded = exceeded(&args, &c);
     if !exceeded.is_empty() {
         return Err(BeyondThresholds(format!(
@@ -88,6 +79,22 @@ pub fn run(args: Args) -> Result<()> {
             exceeded.join(", ")
         ))
         .into());
+    }
+    printed
+}
+
+/// The figures, as text or JSON, on standard output.
+fn print(c: &Comparison, json: bool) -> Result<()> {
+    if json {
+        outln!("{}", serde_json::to_string_pretty(c)?)?;
+    } else {
+        outln!("rmse            {:.6}", c.rmse)?;
+        outln!("psnr            {:.2} dB", c.psnr)?;
+        outln!("max difference  {}/255", c.max_difference)?;
+        outln!(
+            "differing       {:.4}% of pixels (> 2/255)",
+            100.0 * c.differing_share
+        )?;
     }
     Ok(())
 }

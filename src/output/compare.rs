@@ -29,13 +29,11 @@ pub fn compare(a: &Image, b: &Image, exposure: f32) -> Result<Comparison> {
     let mut max_difference = 0u8;
     let mut differing = 0usize;
     for (p, q) in a.pixels.iter().zip(&b.pixels) {
-        let (p, q) = (to_srgb8(*p, exposure), to_srgb8(*q, exposure));
-        let worst = (0..3).map(|c| p[c].abs_diff(q[c])).max().unwrap_or(0);
+        let d = displayed_difference(*p, *q, exposure);
+        let worst = d.into_iter().max().unwrap_or(0);
         max_difference = max_difference.max(worst);
         differing += usize::from(worst > 2);
-        squares += (0..3)
-            .map(|c| ((p[c] as f64 - q[c] as f64) / 255.0).powi(2))
-            .sum::<f64>();
+        squares += d.iter().map(|&c| (c as f64 / 255.0).powi(2)).sum::<f64>();
     }
     let rmse = (squares / (3 * a.pixels.len()) as f64).sqrt();
     Ok(Comparison {
@@ -58,9 +56,9 @@ pub fn difference_image(a: &Image, b: &Image, exposure: f32, gain: f32) -> Image
         .iter()
         .zip(&b.pixels)
         .map(|(p, q)| {
-            let (p, q) = (to_srgb8(*p, exposure), to_srgb8(*q, exposure));
+            let difference = displayed_difference(*p, *q, exposure);
             // Linear values whose sRGB encoding is the magnified difference.
-            let d = |c: usize| srgb_decode((p[c].abs_diff(q[c]) as f32 / 255.0 * gain).min(1.0));
+            let d = |c: usize| srgb_decode((difference[c] as f32 / 255.0 * gain).min(1.0));
             Vec3::new(d(0), d(1), d(2))
         })
         .collect();
@@ -69,4 +67,18 @@ pub fn difference_image(a: &Image, b: &Image, exposure: f32, gain: f32) -> Image
         height: a.height,
         pixels,
     }
+}
+
+/// The difference of each channel as displayed, in 1/255 steps. A channel that is
+/// not a number in one image only (a defect the 8-bit encoding would show as black)
+/// differs by the whole range.
+fn displayed_difference(p: Vec3, q: Vec3, exposure: f32) -> [u8; 3] {
+    let (a, b) = (to_srgb8(p, exposure), to_srgb8(q, exposure));
+    std::array::from_fn(|c| {
+        if p[c].is_nan() != q[c].is_nan() {
+            255
+        } else {
+            a[c].abs_diff(b[c])
+        }
+    })
 }

@@ -142,8 +142,8 @@ fn write_atomically_with(
             ),
         ));
     }
-    let mut file =
-        tempfile::NamedTempFile::new_in(dir).map_err(|e| Error::io(FileOp::WriteIn, dir, e))?;
+    let mut file = tempfile::NamedTempFile::new_in(dir)
+        .map_err(|e| Error::io(FileOp::WriteIn, dir, without_temporary_name(e, dir)))?;
     let cannot_write = |e| Error::io(FileOp::Write, path, e);
     {
         let mut out = std::io::BufWriter::new(file.as_file_mut());
@@ -160,6 +160,16 @@ fn write_atomically_with(
     }
     file.persist(path).map_err(|e| cannot_write(e.error))?;
     Ok(())
+}
+
+/// Why a file cannot be made in `dir`, without the name of the temporary file that
+/// tempfile adds to its error (a name the user never chose and cannot act on).
+fn without_temporary_name(e: std::io::Error, dir: &Path) -> std::io::Error {
+    match std::fs::metadata(dir) {
+        Err(missing) => missing,
+        Ok(m) if !m.is_dir() => std::io::ErrorKind::NotADirectory.into(),
+        Ok(_) => e.kind().into(),
+    }
 }
 
 /// Reads a PNG (decoded from sRGB to linear), a PFM or an OpenEXR file.

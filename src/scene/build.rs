@@ -1,7 +1,7 @@
 //! From a parsed scene table to a `Scene`: shapes generated, OBJ files loaded,
 //! transforms applied, materials resolved, emitters turned into polygon lights.
 
-use super::file::{LightFile, ObjectFile, SceneFile, ShapeKind, TextureFile};
+use super::file::{LightFile, MAX_MEMORY_BUDGET_MB, ObjectFile, SceneFile, ShapeKind, TextureFile};
 use super::radiosity_settings;
 use super::resources::Resources;
 use super::shapes::{self, Faces};
@@ -71,9 +71,10 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         s.map_resolution
     );
     ensure_valid!(
-        s.max_memory_mb > 0,
+        (1..=MAX_MEMORY_BUDGET_MB).contains(&s.max_memory_mb),
         "shadows.max_memory_mb",
-        "shadows.max_memory_mb must be positive"
+        "shadows.max_memory_mb must be from 1 to {MAX_MEMORY_BUDGET_MB} (1 TiB), got {}",
+        s.max_memory_mb
     );
     ensure_valid!(
         s.map_bias.is_finite() && s.map_bias >= 0.0,

@@ -155,6 +155,9 @@ fn max_steps() -> usize {
 fn max_memory_mb() -> u64 {
     4096
 }
+/// The largest memory budget a scene may set (1 TiB, in MiB): above it a budget
+/// stops being a limit and its count of bytes would overflow.
+pub const MAX_MEMORY_BUDGET_MB: u64 = 1 << 20;
 fn subdivision_levels() -> u32 {
     2
 }

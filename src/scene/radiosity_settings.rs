@@ -1,6 +1,6 @@
 //! `[radiosity]` from the file, checked.
 
-use super::file::RadiosityFile;
+use super::file::{MAX_MEMORY_BUDGET_MB, RadiosityFile};
 use crate::Result;
 use crate::error::ensure_valid;
 use crate::settings::{Division, RadiositySettings as Settings, Subdivision};
@@ -38,9 +38,10 @@ pub fn from_file(r: &RadiosityFile) -> Result<Settings> {
         r.unshot
     );
     ensure_valid!(
-        r.max_memory_mb > 0,
+        (1..=MAX_MEMORY_BUDGET_MB).contains(&r.max_memory_mb),
         "radiosity.max_memory_mb",
-        "radiosity.max_memory_mb must be positive"
+        "radiosity.max_memory_mb must be from 1 to {MAX_MEMORY_BUDGET_MB} (1 TiB), got {}",
+        r.max_memory_mb
     );
     if let Some(t) = r.subdivide {
         ensure_valid!(
@@ -66,7 +67,7 @@ pub fn from_file(r: &RadiosityFile) -> Result<Settings> {
         max_steps: r.max_steps,
         ambient: r.ambient,
         display: r.display,
-        memory_budget: r.max_memory_mb << 20,
+        memory_budget: r.max_memory_mb.saturating_mul(1 << 20),
         subdivision: r.subdivide.map(|threshold| Subdivision {
             threshold,
             levels: r.subdivision_levels,
