@@ -2,7 +2,20 @@ use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let cli = lumiere_cli::Cli::parse();
+    let cli = match lumiere_cli::Cli::try_parse() {
+        Ok(cli) => cli,
+        // Help and version, asked for or shown for a bare `lumiere`: clap's own pages.
+        Err(e)
+            if !e.use_stderr()
+                || e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand =>
+        {
+            e.exit()
+        }
+        Err(e) => {
+            eprintln!("{}", lumiere_cli::usage_error_line(&e));
+            return ExitCode::from(2);
+        }
+    };
     let failure_status = cli.failure_status();
     match lumiere_cli::run(cli) {
         Ok(()) => ExitCode::SUCCESS,

@@ -238,14 +238,25 @@ fn unknown_ids_suggest_the_nearest() {
 
 #[test]
 fn zero_and_absurd_sizes() {
+    // The option's range, then the scene key's own check.
     render_error(
         &[],
         &["cornell-box", "--width", "0"],
-        "width must be between 1",
+        "0 is not in 1..=16384",
     );
     render_error(
         &[],
         &["cornell-box", "--width", "100000"],
+        "100000 is not in 1..=16384",
+    );
+    render_error(
+        &[],
+        &["cornell-box", "--set", "camera.width=0"],
+        "width must be between 1",
+    );
+    render_error(
+        &[],
+        &["cornell-box", "--set", "camera.width=100000"],
         "width must be between 1",
     );
     render_error(
@@ -1788,6 +1799,74 @@ fn numbers_are_refused_in_the_scene_files_words() {
     );
     assert!(!run.stderr.contains("-- -5"), "{}", run.stderr);
     assert!(!dir.path().join("out.png").exists());
+}
+
+/// Usage errors are one line too, exit status 2: clap's message, what continues it
+/// (the missing arguments, the possible values, the real range of a size), a tip
+/// naming a similar argument, and where help is; no usage summary, no tip to put
+/// `--` before a value.
+#[test]
+fn usage_errors_take_one_line() {
+    let dir = workspace(&[]);
+    for (args, fragments) in [
+        (
+            &["render", "x", "--bogus"][..],
+            &[
+                "unexpected argument '--bogus'",
+                "see `lumiere render --help`",
+            ][..],
+        ),
+        (
+            &["render", "x", "--widht", "5"],
+            &["(a similar argument exists: '--width')"],
+        ),
+        (&["render"], &["not provided: --output <OUTPUT> <SCENE>"]),
+        (
+            &["render", "x", "--shadows", "bogus"],
+            &["[possible values: none, ray-cast"],
+        ),
+        (
+            &["render", "x", "-o", "y.png", "--width", "-5"],
+            &["-5 is not in 1..=16384"],
+        ),
+        (
+            &["render", "x", "-o", "y.png", "--height", "20000"],
+            &["20000 is not in 1..=16384"],
+        ),
+        (
+            &["compare", "a", "b", "--max-difference", "-1"],
+            &["-1 is not in 0..=255"],
+        ),
+        (
+            &["rendr"],
+            &[
+                "(a similar subcommand exists: 'render')",
+                "see `lumiere --help`",
+            ],
+        ),
+    ] {
+        let run = lumiere(args, dir.path());
+        assert_eq!(run.code, 2, "{args:?}: {}", run.stderr);
+        let lines: Vec<&str> = run.stderr.lines().collect();
+        assert_eq!(lines.len(), 1, "{args:?}: {}", run.stderr);
+        assert!(lines[0].starts_with("error: "), "{}", lines[0]);
+        assert!(
+            !lines[0].contains("Usage") && !lines[0].contains("-- -"),
+            "{}",
+            lines[0]
+        );
+        for fragment in fragments {
+            assert!(
+                lines[0].contains(fragment),
+                "`{fragment}` not in: {}",
+                lines[0]
+            );
+        }
+    }
+    // Help is still help.
+    let help = lumiere(&["render", "--help"], dir.path());
+    assert_eq!(help.code, 0);
+    assert!(help.stdout.contains("Usage:"));
 }
 
 #[test]

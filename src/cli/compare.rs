@@ -13,6 +13,7 @@ use std::path::PathBuf;
 /// Exit status: 0 within the thresholds (or none given), 1 beyond them, 2 for bad
 /// input (an unreadable image, images of different sizes, a bad option).
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     a: PathBuf,
     b: PathBuf,

@@ -30,7 +30,7 @@ mod shadow_polygons;
 mod timing;
 
 use anyhow::Result;
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 
 /// lumiere renders the classic scan-line algorithms as their papers did them.
 ///
@@ -74,6 +74,35 @@ pub fn is_broken_pipe(error: &anyhow::Error) -> bool {
             .downcast_ref::<std::io::Error>()
             .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
     })
+}
+
+/// A command-line usage error as one line: clap's message with the lines that
+/// continue it (the missing arguments, the possible values) and a tip naming a
+/// similar argument, without the usage summary. Tips to put `--` before a value are
+/// left out: negative numbers are taken as values already.
+pub fn usage_error_line(error: &clap::Error) -> String {
+    let text = error.render().to_string();
+    let mut line = String::new();
+    for part in text.lines().take_while(|l| !l.starts_with("Usage:")) {
+        let part = part.trim();
+        if part.is_empty() || part.contains("use '--") || part.starts_with("For more information") {
+            continue;
+        }
+        if let Some(tip) = part.strip_prefix("tip: ") {
+            line += &format!(" ({tip})");
+        } else {
+            if !line.is_empty() {
+                line.push(' ');
+            }
+            line += part;
+        }
+    }
+    let subcommand = std::env::args()
+        .nth(1)
+        .filter(|name| Cli::command().find_subcommand(name).is_some())
+        .map(|name| format!("{name} "))
+        .unwrap_or_default();
+    format!("{line}; see `lumiere {subcommand}--help`")
 }
 
 pub fn run(cli: Cli) -> Result<()> {

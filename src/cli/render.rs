@@ -3,6 +3,7 @@
 use anyhow::{Context, Result, bail};
 use lumiere::radiosity::{FormFactorMethod, Solver};
 use lumiere::render::{Renderer, available_buffers};
+use lumiere::scene::MAX_SIDE;
 use lumiere::shadow::ShadowMethod;
 use lumiere::{catalogue, load_scene, output};
 use std::path::PathBuf;
@@ -20,10 +21,10 @@ pub struct Args {
     #[arg(short, long)]
     output: PathBuf,
     /// Image width in pixels (overrides camera.width).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_SIDE as i64))]
     width: Option<u32>,
     /// Image height in pixels (overrides camera.height).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_SIDE as i64))]
     height: Option<u32>,
     /// N x N samples per pixel on a regular grid, averaged (box filter).
     #[arg(long)]

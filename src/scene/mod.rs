@@ -21,6 +21,7 @@ pub mod tables;
 mod textures;
 mod transform;
 mod validate;
+pub use validate::MAX_SIDE;
 
 pub use build::scene_from_table;
 pub use lights::{
