@@ -1387,6 +1387,44 @@ fn counts_that_drive_allocations_are_checked_first() {
             "objects[1]: resolution must be from",
         );
     }
+    // Adaptive subdivision: each level is estimated before it is cut (here the
+    // first fits the budget, the second, about 36 MiB, does not).
+    let dir = workspace(&[]);
+    let run = lumiere(
+        &[
+            "render",
+            "cornell-box",
+            "--radiosity",
+            "gathering",
+            "--patch-size",
+            "140",
+            "--element-size",
+            "70",
+            "--subdivide",
+            "1e-9",
+            "--set",
+            "radiosity.subdivision_levels=8",
+            "--set",
+            "radiosity.max_memory_mb=16",
+            "--width",
+            "16",
+            "--height",
+            "16",
+            "-o",
+            "out.png",
+        ],
+        dir.path(),
+    );
+    assert_clear_error(
+        &run,
+        "for level 2 of adaptive subdivision (cutting 2934 of 2948 elements into four), more than the 16.0 MiB",
+        &dir.path().join("out.png"),
+    );
+    assert!(
+        run.stderr.contains("fewer subdivision_levels"),
+        "{}",
+        run.stderr
+    );
     // A budget so large that its count of bytes would overflow is refused, not
     // turned into no limit at all.
     for key in ["radiosity", "shadows"] {

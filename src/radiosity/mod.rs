@@ -229,7 +229,14 @@ pub fn solve(
             let (mesh, elements, direct) = match settings.subdivision {
                 None => (mesh, g.elements, Some(direct)),
                 Some(s) => {
-                    let r = subdivision::refine(mesh, g.elements, &g.patches, &estimator, s);
+                    let r = subdivision::refine(
+                        mesh,
+                        g.elements,
+                        &g.patches,
+                        &estimator,
+                        s,
+                        settings.memory_budget,
+                    )?;
                     summary += &format!(
                         "; adaptive subdivision cut {:?} elements, {} in the end",
                         r.cut,

@@ -14,8 +14,10 @@
 //! reuses the patch solution).
 
 use super::form_factors::Estimator;
-use super::mesh::Mesh;
+use super::mesh::{Mesh, MeshCounts};
 use super::receivers::Receivers;
+use crate::error::OverBudget;
+use crate::{Error, Result};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -30,14 +32,17 @@ pub struct Refined {
 }
 
 /// Refines `mesh`, whose elements have radiosities `elements`, against the patch
-/// radiosities `patches`.
+/// radiosities `patches`. Before each level is cut, the memory the finer mesh and
+/// the coarser one it is cut from hold together is estimated and checked against
+/// `budget` bytes: the number of elements can grow fourfold a level.
 pub fn refine(
     mut mesh: Mesh,
     mut elements: Vec<DVec3>,
     patches: &[DVec3],
     estimator: &Estimator,
     subdivision: Subdivision,
-) -> Refined {
+    budget: u64,
+) -> Result<Refined> {
     let reference = elements
         .iter()
         .zip(&mesh.elements)
@@ -54,6 +59,7 @@ pub fn refine(
             break;
         }
         cut.push(count);
+        check_level(&mesh, count, cut.len(), subdivision, budget)?;
         let (finer, origin) = mesh.refine(&marked);
         elements = origin
             .par_iter()
@@ -73,11 +79,51 @@ pub fn refine(
             .collect();
         mesh = finer;
     }
-    Refined {
+    Ok(Refined {
         mesh,
         elements,
         cut,
+    })
+}
+
+/// Refuses a level that would cut `count` elements of `mesh` into four if the
+/// finer mesh, beside the one it is cut from, would need more than `budget` bytes.
+/// Each cut element gives three more elements and at most five more vertices (its
+/// edges' midpoints and, for a quadrilateral, its centre).
+fn check_level(
+    mesh: &Mesh,
+    count: usize,
+    level: usize,
+    subdivision: Subdivision,
+    budget: u64,
+) -> Result<()> {
+    let now = MeshCounts {
+        patches: mesh.patches.len() as u64,
+        elements: mesh.elements.len() as u64,
+        vertices: mesh.vertices.len() as u64,
+    };
+    let count = count as u64;
+    let finer = MeshCounts {
+        patches: now.patches,
+        elements: now.elements.saturating_add(count.saturating_mul(3)),
+        vertices: now.vertices.saturating_add(count.saturating_mul(5)),
+    };
+    let needed = now.bytes().saturating_add(finer.bytes());
+    if needed <= budget && finer.vertices <= u32::MAX as u64 {
+        return Ok(());
     }
+    Err(Error::OverBudget(Box::new(OverBudget {
+        key: "radiosity.subdivide".into(),
+        value: subdivision.threshold.to_string(),
+        what: format!(
+            "level {level} of adaptive subdivision (cutting {count} of {} elements into four)",
+            now.elements
+        ),
+        needed,
+        budget,
+        budget_key: "radiosity.max_memory_mb".into(),
+        suggestion: "use a larger subdivide threshold or fewer subdivision_levels, or raise radiosity.max_memory_mb".into(),
+    })))
 }
 
 /// The elements that differ from a neighbour by more than `limit` in some band.
