@@ -652,6 +652,129 @@ fn radiosity_renders_with_frames_and_a_convergence_animation() {
     );
 }
 
+/// A frames directory holds one run: a second run with other steps replaces the
+/// first one's frames and animation (leaving other files alone), and the animation
+/// has a frame per step image and one for the final solution.
+#[test]
+fn frames_directories_hold_one_run() {
+    let dir = workspace(&[("lamp.toml", &radiosity_scene("0.5", "[1.0, 1.0, 1.0]", ""))]);
+    let frames = |every: &str| {
+        let run = lumiere(
+            &[
+                "render",
+                "lamp.toml",
+                "-o",
+                "out.png",
+                "--frames",
+                "steps",
+                "--frame-every",
+                every,
+            ],
+            dir.path(),
+        );
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let mut names: Vec<String> = std::fs::read_dir(dir.path().join("steps"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        names.sort();
+        names
+    };
+    let first = frames("1");
+    std::fs::write(dir.path().join("steps/notes.txt"), "mine").unwrap();
+    let second = frames("2");
+    let steps: Vec<&String> = second.iter().filter(|n| n.starts_with("step-")).collect();
+    assert!(!steps.is_empty());
+    assert!(
+        steps.iter().all(|n| {
+            let k: u32 = n["step-".len()..n.len() - 4].parse().unwrap();
+            k % 2 == 0
+        }),
+        "{second:?} after {first:?}"
+    );
+    assert!(
+        second.contains(&"notes.txt".to_string())
+            && second.contains(&"convergence.gif".to_string())
+    );
+    // Nothing staged is left beside it.
+    let beside: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    assert!(beside.is_empty(), "{beside:?}");
+    use image::AnimationDecoder;
+    let gif = std::fs::File::open(dir.path().join("steps/convergence.gif")).unwrap();
+    let decoder = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(gif)).unwrap();
+    let count = decoder.into_frames().collect_frames().unwrap().len();
+    assert_eq!(count, steps.len() + 1);
+}
+
+/// `--aov all` writes every buffer or none: with one earlier file read-only, the
+/// run fails naming it and every earlier file is left as it was.
+#[test]
+fn every_buffer_or_none() {
+    let dir = workspace(&[]);
+    let all = |size: &str| {
+        lumiere(
+            &[
+                "render",
+                "shadow-map-curved",
+                "--aov",
+                "all",
+                "--width",
+                size,
+                "--height",
+                size,
+                "-o",
+                "bufs",
+            ],
+            dir.path(),
+        )
+    };
+    assert_eq!(all("16").code, 0);
+    let bufs = dir.path().join("bufs");
+    let before: Vec<(String, Vec<u8>)> = {
+        let mut files: Vec<_> = std::fs::read_dir(&bufs)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .map(|p| {
+                (
+                    p.file_name().unwrap().to_string_lossy().into_owned(),
+                    std::fs::read(&p).unwrap(),
+                )
+            })
+            .collect();
+        files.sort();
+        files
+    };
+    let locked = bufs.join("depth.pfm");
+    let mut permissions = std::fs::metadata(&locked).unwrap().permissions();
+    permissions.set_readonly(true);
+    std::fs::set_permissions(&locked, permissions).unwrap();
+    let run = all("20");
+    assert_clear_error(
+        &run,
+        "depth.pfm: the file is read-only",
+        &dir.path().join("nothing"),
+    );
+    for (name, bytes) in &before {
+        assert_eq!(
+            &std::fs::read(bufs.join(name)).unwrap(),
+            bytes,
+            "{name} changed"
+        );
+    }
+    let staged = std::fs::read_dir(dir.path()).unwrap().filter(|e| {
+        e.as_ref()
+            .unwrap()
+            .file_name()
+            .to_string_lossy()
+            .starts_with('.')
+    });
+    assert_eq!(staged.count(), 0);
+}
+
 #[test]
 fn radiosity_bad_input() {
     let out = |dir: &tempfile::TempDir| dir.path().join("out.png");

@@ -23,10 +23,22 @@ pub struct Frames {
 pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frames>) -> Result<()> {
     let scene = renderer.scene().clone();
     let scene = &scene;
-    if let Some(f) = frames {
-        std::fs::create_dir_all(&f.dir)
-            .with_context(|| format!("cannot create the frames directory {}", f.dir.display()))?;
-    }
+    let exposure = scene.render.exposure;
+    // The frames go to a staging directory and the animation is encoded as they
+    // come; both replace an earlier run's only once this run is complete.
+    let staged = frames
+        .map(|f| -> Result<_> {
+            let directory = output::StagedDirectory::create(&f.dir).with_context(|| {
+                format!("cannot create the frames directory {}", f.dir.display())
+            })?;
+            let gif = directory.path("convergence.gif");
+            let file = std::fs::File::create(&gif)
+                .with_context(|| format!("cannot write {}", gif.display()))?;
+            let animation = output::Animation::new(std::io::BufWriter::new(file), exposure, 200);
+            Ok((directory, animation))
+        })
+        .transpose()?;
+    let mut staged = staged;
     // Hidden when stderr is not a terminal.
     let bar = ProgressBar::new(1000).with_style(
         ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {msg}")
@@ -34,8 +46,6 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
     );
     bar.set_message(format!("{:?} radiosity", settings.solver).to_lowercase());
     bar.enable_steady_tick(std::time::Duration::from_millis(100));
-    let exposure = scene.render.exposure;
-    let mut animation: Vec<Image> = Vec::new();
     let mut frame_error = Ok(());
     let target = settings.unshot.max(1e-12);
     let solution = radiosity::solve(scene, settings, &mut |mesh, state| {
@@ -47,7 +57,7 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
             state.steps,
             100.0 * fraction
         ));
-        if let Some(f) = frames
+        if let (Some(f), Some((directory, animation))) = (frames, staged.as_mut())
             && state.steps % f.every.max(1) == 0
             && frame_error.is_ok()
         {
@@ -59,11 +69,10 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
                 display: settings.display,
                 summary: String::new(),
             };
-            let path = f.dir.join(format!("step-{:05}.png", state.steps));
+            let path = directory.path(&format!("step-{:05}.png", state.steps));
             frame_error = draw(scene, snapshot).and_then(|image| {
-                let saved = output::save(&image, &path, exposure);
-                animation.push(image);
-                Ok(saved?)
+                output::save(&image, &path, exposure)?;
+                Ok(animation.add(&image)?)
             });
         }
     })?;
@@ -75,12 +84,22 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
     eprintln!("{}", solution.summary);
     let solution = Arc::new(solution);
     renderer.set_radiosity_solution(solution.clone());
-    if let Some(f) = frames {
-        animation.push(renderer.render()?);
-        let gif = output::encode_gif(&animation, exposure, 200)?;
-        output::write_atomically(&f.dir.join("convergence.gif"), &gif)?;
+    if let Some((directory, mut animation)) = staged {
+        animation.add(&renderer.render()?)?;
+        animation
+            .finish()?
+            .into_inner()
+            .map_err(|e| e.into_error())
+            .and_then(|file| file.sync_all())
+            .context("cannot write the convergence animation")?;
+        directory.publish(is_frame_file)?;
     }
     Ok(())
+}
+
+/// The files a run writes into the frames directory.
+fn is_frame_file(name: &str) -> bool {
+    name == "convergence.gif" || (name.starts_with("step-") && name.ends_with(".png"))
 }
 
 /// The image of an intermediate solution.

@@ -180,14 +180,17 @@ pub fn run(args: Args) -> Result<()> {
                 .collect();
             let rendered = renderer.render_with_buffers(&names)?;
             let dir = &args.output;
-            std::fs::create_dir_all(dir)
+            // All the buffers or none: an earlier run's stay until every one is written.
+            let staged = output::StagedDirectory::create(dir)
                 .with_context(|| format!("cannot create the directory {}", dir.display()))?;
+            let mut files = Vec::new();
             for buffer in &rendered.buffers {
                 let format = buffer.natural_format();
-                let path = dir.join(format!("{}.{}", buffer.name, format.extension()));
-                output::save(&buffer.to_image(format), &path, 1.0)?;
+                let file = format!("{}.{}", buffer.name, format.extension());
+                output::save(&buffer.to_image(format), &staged.path(&file), 1.0)?;
+                files.push(file);
             }
-            Ok(())
+            Ok(staged.publish(|name| files.iter().any(|f| f == name))?)
         }
         Some(name) => {
             let name = if name == "shadow" {

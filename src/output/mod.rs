@@ -8,10 +8,12 @@ mod compare;
 mod exr;
 mod pfm;
 mod png;
+mod staged_directory;
 
-pub use animation::encode_gif;
+pub use animation::Animation;
 pub use buffer::{Buffer, BufferData, NO_ID};
 pub use compare::{Comparison, compare, difference_image};
+pub use staged_directory::StagedDirectory;
 
 use crate::{Error, FileOp, Result};
 use glam::Vec3;

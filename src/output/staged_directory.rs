@@ -1,0 +1,80 @@
+//! A directory of outputs that is always consistent (the frames of a progressive
+//! solve, every buffer of a frame): the files of one run are written into a hidden
+//! staging directory beside it and moved in only when the run is complete,
+//! replacing what an earlier run left; a run that fails or is interrupted leaves
+//! the directory as it was.
+
+use crate::{Error, FileOp, Result};
+use std::path::{Path, PathBuf};
+
+pub struct StagedDirectory {
+    target: PathBuf,
+    staging: tempfile::TempDir,
+}
+
+impl StagedDirectory {
+    /// Makes `target` (if missing) and a staging directory beside it.
+    pub fn create(target: &Path) -> Result<StagedDirectory> {
+        std::fs::create_dir_all(target).map_err(|e| Error::io(FileOp::Write, target, e))?;
+        let parent = match target.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        let staging = tempfile::Builder::new()
+            .prefix(".lumiere-staging-")
+            .tempdir_in(parent)
+            .map_err(|e| Error::io(FileOp::WriteIn, parent, e.kind().into()))?;
+        Ok(StagedDirectory {
+            target: target.to_path_buf(),
+            staging,
+        })
+    }
+
+    /// Where the file `name` is written until the run completes.
+    pub fn path(&self, name: &str) -> PathBuf {
+        self.staging.path().join(name)
+    }
+
+    /// Moves the run's files into the directory, first removing what an earlier
+    /// run wrote there (the files `earlier` recognises); other files are left.
+    pub fn publish(self, earlier: impl Fn(&str) -> bool) -> Result<()> {
+        let names = |dir: &Path| -> Result<Vec<String>> {
+            let entries = std::fs::read_dir(dir).map_err(|e| Error::io(FileOp::Read, dir, e))?;
+            entries
+                .map(|entry| {
+                    let entry = entry.map_err(|e| Error::io(FileOp::Read, dir, e))?;
+                    Ok(entry.file_name().to_string_lossy().into_owned())
+                })
+                .collect()
+        };
+        let made = names(self.staging.path())?;
+        let stale: Vec<String> = names(&self.target)?
+            .into_iter()
+            .filter(|n| earlier(n) || made.contains(n))
+            .collect();
+        // A read-only file is never replaced: refuse before anything moves.
+        for name in &stale {
+            let path = self.target.join(name);
+            if std::fs::metadata(&path).is_ok_and(|m| m.permissions().readonly()) {
+                return Err(Error::io(
+                    FileOp::Write,
+                    &path,
+                    std::io::Error::new(
+                        std::io::ErrorKind::PermissionDenied,
+                        "the file is read-only: it is left as it is",
+                    ),
+                ));
+            }
+        }
+        for name in &stale {
+            let path = self.target.join(name);
+            std::fs::remove_file(&path).map_err(|e| Error::io(FileOp::Write, &path, e))?;
+        }
+        for name in &made {
+            let to = self.target.join(name);
+            std::fs::rename(self.staging.path().join(name), &to)
+                .map_err(|e| Error::io(FileOp::Write, &to, e))?;
+        }
+        Ok(())
+    }
+}
