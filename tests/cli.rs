@@ -688,7 +688,7 @@ fn frames_directories_hold_one_run() {
     assert!(
         steps.iter().all(|n| {
             let k: u32 = n["step-".len()..n.len() - 4].parse().unwrap();
-            k % 2 == 0
+            k.is_multiple_of(2)
         }),
         "{second:?} after {first:?}"
     );
