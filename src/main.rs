@@ -2,6 +2,12 @@ use clap::Parser;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    // Interrupted (Ctrl-C, SIGTERM): no temporary file or staging directory is left
+    // behind, and the status says so (128 + SIGINT).
+    let _ = ctrlc::set_handler(|| {
+        lumiere::output::remove_unfinished();
+        std::process::exit(130);
+    });
     let cli = match lumiere_cli::Cli::try_parse() {
         Ok(cli) => cli,
         // Help and version, asked for or shown for a bare `lumiere`: clap's own pages.

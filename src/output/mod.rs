@@ -18,7 +18,7 @@ pub use staged_directory::StagedDirectory;
 use crate::{Error, FileOp, Result};
 use glam::Vec3;
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Linear RGB radiance, row-major, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]
@@ -123,6 +123,44 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     })
 }
 
+/// Temporary files and staging directories being written: what an interrupted
+/// process must remove so that nothing half-written is left (`remove_unfinished`).
+static UNFINISHED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Keeps `path` on the list of unfinished files while it lives.
+pub(crate) struct Unfinished(PathBuf);
+
+impl Unfinished {
+    pub(crate) fn track(path: &Path) -> Unfinished {
+        let mut list = UNFINISHED.lock().unwrap_or_else(|e| e.into_inner());
+        list.push(path.to_path_buf());
+        Unfinished(path.to_path_buf())
+    }
+}
+
+impl Drop for Unfinished {
+    fn drop(&mut self) {
+        let mut list = UNFINISHED.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(k) = list.iter().position(|p| *p == self.0) {
+            list.swap_remove(k);
+        }
+    }
+}
+
+/// Removes every temporary file and staging directory still being written: for a
+/// process about to end on an interruption (Ctrl-C, SIGTERM). Outputs appear whole
+/// under their names or not at all; this leaves no hidden remains either.
+pub fn remove_unfinished() {
+    let list = UNFINISHED.lock().unwrap_or_else(|e| e.into_inner());
+    for path in list.iter() {
+        if path.is_dir() {
+            let _ = std::fs::remove_dir_all(path);
+        } else {
+            let _ = std::fs::remove_file(path);
+        }
+    }
+}
+
 /// Streams `write`'s output into a temporary file beside `path`, renamed to `path`
 /// once complete.
 fn write_atomically_with(
@@ -146,6 +184,7 @@ fn write_atomically_with(
     }
     let mut file = tempfile::NamedTempFile::new_in(dir)
         .map_err(|e| Error::io(FileOp::WriteIn, dir, without_temporary_name(e, dir)))?;
+    let _unfinished = Unfinished::track(file.path());
     let cannot_write = |e| Error::io(FileOp::Write, path, e);
     {
         let mut out = std::io::BufWriter::new(file.as_file_mut());

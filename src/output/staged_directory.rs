@@ -4,12 +4,14 @@
 //! replacing what an earlier run left; a run that fails or is interrupted leaves
 //! the directory as it was.
 
+use super::Unfinished;
 use crate::{Error, FileOp, Result};
 use std::path::{Path, PathBuf};
 
 pub struct StagedDirectory {
     target: PathBuf,
     staging: tempfile::TempDir,
+    _unfinished: Unfinished,
 }
 
 impl StagedDirectory {
@@ -26,6 +28,7 @@ impl StagedDirectory {
             .map_err(|e| Error::io(FileOp::WriteIn, parent, e.kind().into()))?;
         Ok(StagedDirectory {
             target: target.to_path_buf(),
+            _unfinished: Unfinished::track(staging.path()),
             staging,
         })
     }
