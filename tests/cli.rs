@@ -1510,6 +1510,22 @@ fn counts_that_drive_allocations_are_checked_first() {
             "objects[1]: resolution must be from",
         );
     }
+    // The scene's geometry, object by object: two spheres of 131,072 quadrilaterals
+    // fit 450 MiB, a third does not.
+    let balls: String = (0..3)
+        .map(|i| format!("[[objects]]\nshape = \"sphere\"\nmaterial = \"grey\"\nresolution = 512\ntransform = [{{ translate = [{i}.0, 0.0, 0.0] }}]\n"))
+        .collect();
+    let text = scene(CAMERA, &format!("\n[render]\nmax_memory_mb = 450\n{balls}"));
+    render_error(
+        &[("s.toml", &text)],
+        &["s.toml"],
+        "objects[3]: resolution = 512 would need about",
+    );
+    render_error(
+        &[("s.toml", &text)],
+        &["s.toml"],
+        "for the scene's 393217 polygons with this object's 131072, more than the 450.0 MiB that render.max_memory_mb allows",
+    );
     // Adaptive subdivision: each level is estimated before it is cut (here the
     // first fits the budget, the second, about 36 MiB, does not).
     let dir = workspace(&[]);

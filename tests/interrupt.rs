@@ -35,7 +35,10 @@ fn interrupt_while_writing(mut child: Child, dir: &Path) -> i32 {
             child.try_wait().unwrap().is_none(),
             "the run ended before it was seen writing"
         );
-        assert!(start.elapsed() < Duration::from_secs(120), "nothing written");
+        assert!(
+            start.elapsed() < Duration::from_secs(120),
+            "nothing written"
+        );
         std::thread::sleep(Duration::from_millis(2));
     }
     let kill = Command::new("sh")

@@ -369,6 +369,10 @@ pub struct RenderFile {
     /// Off: no environment is looked up (mirrors show their local shading only).
     #[serde(default = "yes")]
     pub environments: bool,
+    /// The memory the scene's geometry may take, estimated before each object is
+    /// added (MiB).
+    #[serde(default = "max_memory_mb")]
+    pub max_memory_mb: u64,
 }
 
 impl Default for RenderFile {
@@ -381,6 +385,7 @@ impl Default for RenderFile {
             band_rows: 0,
             backdrop: None,
             environments: true,
+            max_memory_mb: max_memory_mb(),
         }
     }
 }
