@@ -121,6 +121,12 @@ pub fn clip(subject: &Region, clip: &Region) -> (Region, Region) {
         .flatten()
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()))
         .max(1e-300);
+    // Contours with no area to speak of (a polygon folded onto a line, a point)
+    // bound nothing, and would confuse the entry and exit labels: swept first.
+    let clip = &sweep(clip.clone(), 1e-9 * size);
+    if clip.is_empty() {
+        return (Vec::new(), sweep(subject.clone(), 1e-9 * size));
+    }
     // The box grown by more than the largest perturbation below.
     let (lo, hi) = bounds(clip.iter().flatten());
     let margin = DVec2::splat(4e-6 * size);
@@ -129,6 +135,7 @@ pub fn clip(subject: &Region, clip: &Region) -> (Region, Region) {
         let (clo, chi) = bounds(c);
         clo.x <= hi.x && clo.y <= hi.y && chi.x >= lo.x && chi.y >= lo.y
     });
+    let near = sweep(near, 1e-9 * size);
     if near.is_empty() {
         return (Vec::new(), far);
     }
