@@ -173,7 +173,7 @@ pub enum Error {
     /// Gathering would store more form factors (`needed` bytes, for `elements` ×
     /// `patches` of them) than the `budget` allows.
     #[error(
-        "gathering would store {} form factors ({:.1} GiB) for {elements} elements and {patches} patches, more than the {:.1} GiB allowed; use the shooting solver (O(n) memory) or coarser patches",
+        "gathering would store {} form factors ({:.1} GiB) for {elements} elements and {patches} patches, more than the {:.1} GiB that radiosity.max_memory_mb allows; use the shooting solver (O(n) memory) or coarser patches, or raise radiosity.max_memory_mb",
         (*elements as u64).saturating_mul(*patches as u64),
         gib(*needed),
         gib(*budget)

@@ -1946,7 +1946,7 @@ fn numbers_are_refused_in_the_scene_files_words() {
     render_error(
         &[("s.toml", &negative)],
         &["s.toml"],
-        "camera.width: invalid value: integer `-5`, expected a whole number from 0 to 4294967295",
+        "camera.width must be between 1 and 16384, got -5",
     );
     render_error(
         &[("s.toml", "[render]\nexposure = 1.0\n")],

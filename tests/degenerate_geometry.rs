@@ -165,7 +165,9 @@ mod scenes {
     fn scene(s: f64, flatten: f64, light: DVec3) -> Option<Scene> {
         let loaded = load(s, flatten, light);
         if flatten == 0.0 {
-            let e = loaded.err().expect("a zero scale is refused");
+            let Err(e) = loaded else {
+                panic!("a zero scale is refused")
+            };
             let line = crate::common::error_line(&e);
             assert!(
                 line.contains("objects[0]: the transform is degenerate"),
@@ -199,7 +201,7 @@ mod scenes {
             h = 0.5 * s,
             t = 1.5 * s,
             q = 6.0 * s,
-            d = -1.0 * s,
+            d = -s,
         );
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("scene.toml");

@@ -224,7 +224,7 @@ fn orphans() -> Result<(), Failed> {
 }
 
 /// The same bytes whatever the thread count: every entry's PFM (exact f32
-/// radiance) with a pool of 1 thread and a pool of 4.
+/// radiance) with pools of 1, 2 and 8 threads.
 fn deterministic() -> Result<(), Failed> {
     let render_all = |threads: usize| -> Result<Vec<Vec<u8>>, Failed> {
         let pool = rayon::ThreadPoolBuilder::new()

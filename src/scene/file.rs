@@ -341,8 +341,10 @@ pub struct CameraFile {
     #[serde(default = "y_up")]
     pub up: Vec3File,
     pub fov_y: f64,
-    pub width: u32,
-    pub height: u32,
+    /// Signed, so that a negative size is refused with the real range
+    /// (`validate::camera`), not the deserialiser's words for a u32.
+    pub width: i64,
+    pub height: i64,
     pub near: Option<f64>,
 }
 

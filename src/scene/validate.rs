@@ -96,13 +96,22 @@ pub fn camera(c: &CameraFile) -> Result<Camera> {
         "camera.near",
         "camera.near must be positive, got {near}"
     );
+    let side = |name: &str, n: i64| -> Result<u32> {
+        let key = format!("camera.{name}");
+        ensure_valid!(
+            (1..=MAX_SIDE as i64).contains(&n),
+            &key,
+            "{key} must be between 1 and {MAX_SIDE}, got {n}"
+        );
+        Ok(n as u32)
+    };
     Ok(Camera {
         eye,
         look_at,
         up,
         fov_y: c.fov_y,
-        width: c.width,
-        height: c.height,
+        width: side("width", c.width)?,
+        height: side("height", c.height)?,
         near,
     })
 }
