@@ -249,6 +249,20 @@ fn messages_name_the_real_cause() {
     assert!(chain.contains("textures.checks.image"), "{chain}");
 }
 
+/// Found by the coverage-guided `images` target (`tools/fuzz.sh`): an EXR header of
+/// 1.6 kB whose ZIP block declared 42 GB of pixels, which the decoder allocated
+/// before reading them. Refused from its header now, by `compare` and as a texture.
+#[test]
+fn an_exr_declaring_a_huge_block_is_refused_from_its_header() {
+    let bytes = include_bytes!("references/fuzz/exr-huge-block.exr");
+    let error = output::decode(bytes, Format::Exr).unwrap_err().to_string();
+    assert!(
+        error.contains("larger than 16384 on a side") || error.contains("a block of this image"),
+        "{error}"
+    );
+    assert!(lumiere::texture::Texels::decode(bytes).is_err());
+}
+
 /// An MTL file's `map_Kd` is loaded (relative to the OBJ file) and scales its
 /// material's diffuse colour, as users of OBJ files expect.
 #[test]

@@ -28,9 +28,51 @@ pub fn encode(image: &Image) -> Result<Vec<u8>> {
     Ok(out.into_inner())
 }
 
+/// Largest side of an EXR file read: the largest image lumiere makes.
+const MAX_SIDE: usize = 16_384;
+
+/// Largest block (a tile, or the scan lines compressed together) whose pixels an EXR
+/// file may declare: the decoder allocates a block's declared size before it has
+/// read a byte of it (a fuzzed header of 1.6 kB asked for 42 GB).
+const MAX_BLOCK_BYTES: usize = 1 << 28;
+
+/// Refuses an EXR file whose header declares layers, or blocks, larger than lumiere
+/// reads, before any pixel is decoded.
+fn check_sizes(bytes: &[u8]) -> Result<()> {
+    use ::exr::meta::{BlockDescription, MetaData};
+    let meta = MetaData::read_from_buffered(bytes, false)
+        .map_err(|e| Error::image(format!("not a readable OpenEXR file: {e}")))?;
+    for header in &meta.headers {
+        let (width, height) = (header.layer_size.width(), header.layer_size.height());
+        if width > MAX_SIDE || height > MAX_SIDE {
+            return Err(Error::image(format!(
+                "the image is {width}x{height}, larger than {MAX_SIDE} on a side"
+            )));
+        }
+        let pixels = match header.blocks {
+            BlockDescription::Tiles(tiles) => tiles
+                .tile_size
+                .width()
+                .checked_mul(tiles.tile_size.height()),
+            BlockDescription::ScanLines => {
+                header.compression.scan_lines_per_block().checked_mul(width)
+            }
+        };
+        let block = pixels.and_then(|p| p.checked_mul(header.channels.bytes_per_pixel));
+        if block.is_none_or(|b| b > MAX_BLOCK_BYTES) {
+            return Err(Error::image(format!(
+                "a block of this image would hold more than {} MiB of pixels",
+                MAX_BLOCK_BYTES >> 20
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// Reads the R, G and B channels (as f32, whatever their stored type); alpha, if
 /// any, is dropped.
 pub fn decode(bytes: &[u8]) -> Result<Image> {
+    check_sizes(bytes)?;
     let decoded =
         image::load_from_memory_with_format(bytes, image::ImageFormat::OpenExr)?.into_rgb32f();
     if decoded.width() == 0 || decoded.height() == 0 {

@@ -46,7 +46,13 @@ impl Texels {
     /// Decodes a PNG or JPEG file's bytes; 8-bit channels are sRGB-encoded, so they are
     /// decoded to linear radiometric values.
     pub fn decode(bytes: &[u8]) -> Result<Texels> {
-        let image = image::load_from_memory(bytes)
+        // Only the formats a texture is documented to be: the other decoders the
+        // image crate carries (EXR's among them) trust sizes their headers declare.
+        let format = image::guess_format(bytes)
+            .ok()
+            .filter(|f| matches!(f, image::ImageFormat::Png | image::ImageFormat::Jpeg))
+            .ok_or_else(|| Error::image("not a PNG or JPEG image"))?;
+        let image = image::load_from_memory_with_format(bytes, format)
             .map_err(|e| Error::image(format!("not a readable PNG or JPEG image: {e}")))?;
         let (width, height) = (image.width(), image.height());
         if width == 0 || height == 0 {
