@@ -4,7 +4,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use lumiere::scene::{scene_from_table, tables};
-use lumiere_fuzz::{Files, MTL, OBJ};
+use lumiere_fuzz::{MTL, OBJ, files};
 
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);
@@ -17,5 +17,5 @@ fuzz_target!(|data: &[u8]| {
             return;
         }
     }
-    let _ = scene_from_table(table, &Files::new(OBJ.as_bytes(), MTL.as_bytes()));
+    let _ = scene_from_table(table, &files(OBJ.as_bytes(), MTL.as_bytes()));
 });

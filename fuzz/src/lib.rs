@@ -1,28 +1,15 @@
 //! What the fuzz targets share: files held in memory as a scene's directory, and the
 //! OBJ/MTL pair and scene they start from.
 
+use lumiere::scene::resources::InMemory;
 use std::collections::HashMap;
-use std::path::Path;
 
 /// A scene's directory in memory: `m.obj` and `m.mtl`.
-pub struct Files(HashMap<&'static str, Vec<u8>>);
-
-impl Files {
-    pub fn new(obj: &[u8], mtl: &[u8]) -> Files {
-        Files(HashMap::from([
-            ("m.obj", obj.to_vec()),
-            ("m.mtl", mtl.to_vec()),
-        ]))
-    }
-}
-
-impl lumiere::scene::resources::Resources for Files {
-    fn read(&self, path: &Path) -> lumiere::Result<Vec<u8>> {
-        self.0
-            .get(path.to_str().unwrap_or(""))
-            .cloned()
-            .ok_or_else(|| lumiere::Error::Scene(format!("no file {}", path.display())))
-    }
+pub fn files(obj: &[u8], mtl: &[u8]) -> InMemory {
+    InMemory(HashMap::from([
+        ("m.obj".to_string(), obj.to_vec()),
+        ("m.mtl".to_string(), mtl.to_vec()),
+    ]))
 }
 
 pub const OBJ: &str = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\nusemtl red\nf 1/1/1 2/2/1 3/3/1 4/1/1\n";

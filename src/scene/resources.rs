@@ -3,6 +3,7 @@
 
 use crate::{Error, FileOp, Result};
 use include_dir::Dir;
+use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
 
 pub trait Resources: Sync {
@@ -17,6 +18,19 @@ impl Resources for Directory {
     fn read(&self, path: &Path) -> Result<Vec<u8>> {
         let full = self.0.join(path);
         std::fs::read(&full).map_err(|e| Error::io(FileOp::Read, &full, e))
+    }
+}
+
+/// Files held in memory, by their path relative to the scene: a scene a program
+/// builds, tests, fuzzing.
+pub struct InMemory(pub HashMap<String, Vec<u8>>);
+
+impl Resources for InMemory {
+    fn read(&self, path: &Path) -> Result<Vec<u8>> {
+        self.0
+            .get(path.to_str().unwrap_or(""))
+            .cloned()
+            .ok_or_else(|| Error::Scene(format!("no file {}", path.display())))
     }
 }
 

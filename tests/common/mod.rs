@@ -47,16 +47,8 @@ pub fn error_line(e: &dyn std::error::Error) -> String {
 }
 
 /// Files held in memory, as a scene's directory.
-pub struct Files(pub std::collections::HashMap<String, Vec<u8>>);
-
-impl lumiere::scene::resources::Resources for Files {
-    fn read(&self, path: &std::path::Path) -> lumiere::Result<Vec<u8>> {
-        self.0
-            .get(path.to_str().unwrap_or(""))
-            .cloned()
-            .ok_or_else(|| lumiere::Error::Scene(format!("no file {}", path.display())))
-    }
-}
+#[allow(unused_imports)]
+pub use lumiere::scene::resources::InMemory as Files;
 
 /// A scene written to a temporary file and loaded from it, with `--set` overrides
 /// (the path a scene file takes, with its relative paths and messages).
