@@ -26,7 +26,7 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
     let exposure = scene.render.exposure;
     // The frames go to a staging directory and the animation is encoded as they
     // come; both replace an earlier run's only once this run is complete.
-    let staged = frames
+    let mut staged = frames
         .map(|f| -> Result<_> {
             let directory = output::StagedDirectory::create(&f.dir).with_context(|| {
                 format!("cannot create the frames directory {}", f.dir.display())
@@ -38,7 +38,6 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
             Ok((directory, animation))
         })
         .transpose()?;
-    let mut staged = staged;
     // Hidden when stderr is not a terminal.
     let bar = ProgressBar::new(1000).with_style(
         ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {msg}")

@@ -123,6 +123,22 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     })
 }
 
+/// Refuses to replace `path` if it is a read-only file: renaming over it, or
+/// removing it, would not ask.
+fn refuse_read_only(path: &Path) -> Result<()> {
+    if std::fs::metadata(path).is_ok_and(|m| m.permissions().readonly()) {
+        return Err(Error::io(
+            FileOp::Write,
+            path,
+            std::io::Error::new(
+                std::io::ErrorKind::PermissionDenied,
+                "the file is read-only: it is left as it is",
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Temporary files and staging directories being written: what an interrupted
 /// process must remove so that nothing half-written is left (`remove_unfinished`).
 static UNFINISHED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
@@ -172,16 +188,7 @@ fn write_atomically_with(
         _ => Path::new("."),
     };
     // Renaming over a read-only file would replace it silently.
-    if std::fs::metadata(path).is_ok_and(|m| m.permissions().readonly()) {
-        return Err(Error::io(
-            FileOp::Write,
-            path,
-            std::io::Error::new(
-                std::io::ErrorKind::PermissionDenied,
-                "the file is read-only: it is left as it is",
-            ),
-        ));
-    }
+    refuse_read_only(path)?;
     let mut file = tempfile::NamedTempFile::new_in(dir)
         .map_err(|e| Error::io(FileOp::WriteIn, dir, without_temporary_name(e, dir)))?;
     let _unfinished = Unfinished::track(file.path());

@@ -4,7 +4,7 @@
 //! replacing what an earlier run left; a run that fails or is interrupted leaves
 //! the directory as it was.
 
-use super::Unfinished;
+use super::{Unfinished, refuse_read_only, without_temporary_name};
 use crate::{Error, FileOp, Result};
 use std::path::{Path, PathBuf};
 
@@ -25,7 +25,7 @@ impl StagedDirectory {
         let staging = tempfile::Builder::new()
             .prefix(".lumiere-staging-")
             .tempdir_in(parent)
-            .map_err(|e| Error::io(FileOp::WriteIn, parent, e.kind().into()))?;
+            .map_err(|e| Error::io(FileOp::WriteIn, parent, without_temporary_name(e, parent)))?;
         Ok(StagedDirectory {
             target: target.to_path_buf(),
             _unfinished: Unfinished::track(staging.path()),
@@ -57,17 +57,7 @@ impl StagedDirectory {
             .collect();
         // A read-only file is never replaced: refuse before anything moves.
         for name in &stale {
-            let path = self.target.join(name);
-            if std::fs::metadata(&path).is_ok_and(|m| m.permissions().readonly()) {
-                return Err(Error::io(
-                    FileOp::Write,
-                    &path,
-                    std::io::Error::new(
-                        std::io::ErrorKind::PermissionDenied,
-                        "the file is read-only: it is left as it is",
-                    ),
-                ));
-            }
+            refuse_read_only(&self.target.join(name))?;
         }
         for name in &stale {
             let path = self.target.join(name);

@@ -395,13 +395,9 @@ impl Builder {
                 shapes::cylinder(resolution, o.caps.unwrap_or(true), smooth)
             }
         };
-        let value = match o.shape {
-            ShapeKind::Sphere | ShapeKind::Cylinder => resolution.to_string(),
-            _ => format!("{:?}", o.shape).to_lowercase(),
-        };
-        let key = match o.shape {
-            ShapeKind::Sphere | ShapeKind::Cylinder => "resolution",
-            _ => "shape",
+        let (key, value) = match o.shape {
+            ShapeKind::Sphere | ShapeKind::Cylinder => ("resolution", resolution.to_string()),
+            _ => ("shape", format!("{:?}", o.shape).to_lowercase()),
         };
         self.check_geometry(&faces, key, &value)?;
         let material_name = o.material.as_deref().ok_or_else(|| {
