@@ -25,6 +25,8 @@ pub struct Algorithm {
     /// Authors and year as cited, e.g. "Watkins 1970".
     pub authors: String,
     pub year: u32,
+    /// The part of the course it belongs to (a page of the gallery).
+    pub topic: Topic,
     /// The full reference.
     pub citation: String,
     /// What the entry shows, in a paragraph.
@@ -35,6 +37,60 @@ pub struct Algorithm {
     /// Another entry whose scene this one starts from.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub extends: Option<String>,
+}
+
+/// The parts of the course, in its order: each is a page of the gallery.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Topic {
+    VisibleSurfaces,
+    HardShadows,
+    SoftShadows,
+    LightVolumes,
+    Texture,
+    EnvironmentMapping,
+    Radiosity,
+    GlobalIllumination,
+}
+
+impl Topic {
+    pub const ALL: [Topic; 8] = [
+        Topic::VisibleSurfaces,
+        Topic::HardShadows,
+        Topic::SoftShadows,
+        Topic::LightVolumes,
+        Topic::Texture,
+        Topic::EnvironmentMapping,
+        Topic::Radiosity,
+        Topic::GlobalIllumination,
+    ];
+
+    /// The name scene files and page names use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Topic::VisibleSurfaces => "visible-surfaces",
+            Topic::HardShadows => "hard-shadows",
+            Topic::SoftShadows => "soft-shadows",
+            Topic::LightVolumes => "light-volumes",
+            Topic::Texture => "texture",
+            Topic::EnvironmentMapping => "environment-mapping",
+            Topic::Radiosity => "radiosity",
+            Topic::GlobalIllumination => "global-illumination",
+        }
+    }
+
+    pub fn title(self) -> &'static str {
+        match self {
+            Topic::VisibleSurfaces => "Visible surfaces and shading",
+            Topic::HardShadows => "Hard shadows",
+            Topic::SoftShadows => "Soft shadows",
+            Topic::LightVolumes => "Light volumes",
+            Topic::Texture => "Texture, mip and bump mapping",
+            Topic::EnvironmentMapping => "Environment mapping",
+            Topic::Radiosity => "Radiosity",
+            Topic::GlobalIllumination => "Global illumination",
+        }
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -60,6 +116,16 @@ pub fn ids() -> Vec<String> {
 /// All entries, in id order.
 pub fn entries() -> Result<Vec<Entry>> {
     ids().iter().map(|id| entry(id)).collect()
+}
+
+/// The text of the entry's file, `algorithms/<id>.toml`, as written (its
+/// `extends` unresolved).
+pub fn source(id: &str) -> Result<&'static str> {
+    ALGORITHMS
+        .get_file(format!("{id}.toml"))
+        .ok_or_else(|| unknown(id))?
+        .contents_utf8()
+        .ok_or_else(|| Error::Catalogue(format!("{id}.toml is not UTF-8")))
 }
 
 pub fn entry(id: &str) -> Result<Entry> {

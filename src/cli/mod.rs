@@ -23,10 +23,12 @@ mod bench_radiosity;
 mod compare;
 mod envmap;
 mod form_factors;
+mod gallery;
 mod list;
 mod radiosity;
 mod render;
 mod shadow_polygons;
+mod show;
 mod timing;
 
 use anyhow::Result;
@@ -47,6 +49,8 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 enum Command {
     List(list::Args),
+    Show(show::Args),
+    Gallery(gallery::Args),
     Render(render::Args),
     Compare(compare::Args),
     Envmap(envmap::Args),
@@ -108,6 +112,8 @@ pub fn usage_error_line(error: &clap::Error) -> String {
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::List(a) => list::run(a),
+        Command::Show(a) => show::run(a),
+        Command::Gallery(a) => gallery::run(a),
         Command::Render(a) => render::run(a),
         Command::Compare(a) => compare::run(a),
         Command::Envmap(a) => envmap::run(a),

@@ -62,6 +62,12 @@ pub fn run(args: Args) -> Result<()> {
     Ok(())
 }
 
+/// The plan of `scene`'s lit and shadowed polygons under its first point light, as
+/// PNG bytes.
+pub fn plan_of(scene: &Scene) -> Result<Vec<u8>> {
+    plan(&receiver_shadows(scene, first_point_light(scene)?))
+}
+
 fn first_point_light(scene: &Scene) -> Result<glam::DVec3> {
     scene
         .lights

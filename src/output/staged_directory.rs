@@ -33,6 +33,59 @@ impl StagedDirectory {
         })
     }
 
+    /// A staging directory for a `target` directory that is replaced whole when
+    /// the run completes (`replace`): its files refer to each other, so no file of
+    /// an earlier run may stay beside them. `target` is not made until then.
+    pub fn for_replacing(target: &Path) -> Result<StagedDirectory> {
+        let parent = match target.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => Path::new("."),
+        };
+        std::fs::create_dir_all(parent).map_err(|e| Error::io(FileOp::Write, parent, e))?;
+        let staging = tempfile::Builder::new()
+            .prefix(".lumiere-staging-")
+            .tempdir_in(parent)
+            .map_err(|e| Error::io(FileOp::WriteIn, parent, without_temporary_name(e, parent)))?;
+        Ok(StagedDirectory {
+            target: target.to_path_buf(),
+            _unfinished: Unfinished::track(staging.path()),
+            staging,
+        })
+    }
+
+    /// The staging directory itself.
+    pub fn root(&self) -> &Path {
+        self.staging.path()
+    }
+
+    /// Puts the staging directory in `target`'s place: an earlier `target` is moved
+    /// aside, the new one renamed in, and the earlier one removed (put back if the
+    /// rename fails).
+    pub fn replace(self) -> Result<()> {
+        let target = &self.target;
+        if !target.exists() {
+            let staging = self.staging.keep();
+            return std::fs::rename(&staging, target)
+                .map_err(|e| Error::io(FileOp::Write, target, e));
+        }
+        refuse_read_only(target)?;
+        let parent = self.staging.path().parent().unwrap_or(Path::new("."));
+        let aside = tempfile::Builder::new()
+            .prefix(".lumiere-replaced-")
+            .tempdir_in(parent)
+            .map_err(|e| Error::io(FileOp::WriteIn, parent, without_temporary_name(e, parent)))?;
+        // Renaming a directory over an empty one replaces it.
+        std::fs::rename(target, aside.path()).map_err(|e| Error::io(FileOp::Write, target, e))?;
+        if let Err(e) = std::fs::rename(self.staging.path(), target) {
+            let _ = std::fs::rename(aside.path(), target);
+            return Err(Error::io(FileOp::Write, target, e));
+        }
+        // The staging directory is now `target`: nothing is left to remove there.
+        let _ = self.staging.keep();
+        drop(aside);
+        Ok(())
+    }
+
     /// Where the file `name` is written until the run completes.
     pub fn path(&self, name: &str) -> PathBuf {
         self.staging.path().join(name)

@@ -116,6 +116,18 @@ pub fn gauss_seidel(
     reflectance: &[f64],
     tolerance: f64,
 ) -> (Vec<f64>, usize) {
+    gauss_seidel_observed(factors, emission, reflectance, tolerance, &mut |_| {})
+}
+
+/// `gauss_seidel`, handing `observe` the radiosities after each sweep (to watch
+/// the residual fall).
+pub fn gauss_seidel_observed(
+    factors: &[Vec<f64>],
+    emission: &[f64],
+    reflectance: &[f64],
+    tolerance: f64,
+    observe: &mut dyn FnMut(&[f64]),
+) -> (Vec<f64>, usize) {
     let mut b = emission.to_vec();
     // Rows are diagonally dominant (ρ < 1, row sums ≤ 1): convergence is geometric;
     // the cap only guards against factors an estimate made too large.
@@ -127,6 +139,7 @@ pub fn gauss_seidel(
             change = change.max((new - b[i]).abs());
             b[i] = new;
         }
+        observe(&b);
         let largest = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         if change <= tolerance * largest {
             return (b, sweep);

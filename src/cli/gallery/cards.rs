@@ -1,0 +1,310 @@
+//! One picture of the gallery (a card): a catalogue scene with some keys changed,
+//! rendered and timed, with the buffers that explain it, its agreement with the
+//! reference of its comparison, the progressive frames of a shooting solve and the
+//! shadow-polygon plan.
+
+use super::topics::Page;
+use anyhow::{Context, Result};
+use lumiere::output::{self, Buffer, BufferData, Image};
+use lumiere::radiosity::{self, Solution, Solver};
+use lumiere::render::{Renderer, available_buffers};
+use lumiere::settings::ShadowMethod;
+use lumiere::{catalogue, load_scene};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// At most this many buffers per card.
+const MAX_BUFFERS: usize = 8;
+/// Differences are shown magnified this many times.
+const DIFFERENCE_GAIN: f32 = 4.0;
+
+/// What to render.
+#[derive(Clone, Debug)]
+pub struct CardSpec {
+    /// The catalogue entry whose scene is rendered.
+    pub scene: String,
+    /// Keys changed, as `--set` takes them.
+    pub sets: Vec<String>,
+    pub width: u32,
+    pub height: u32,
+    /// The key of the card this one is measured against.
+    pub reference: Option<String>,
+}
+
+impl CardSpec {
+    /// The cache key: the program, the entry's contents and everything changed.
+    pub fn key(&self, program: u64) -> Result<String> {
+        let entry = toml::to_string(&catalogue::entry(&self.scene)?.scene)?;
+        let mut hash = Fnv::new();
+        hash.add(&program.to_le_bytes());
+        for part in [self.scene.as_str(), entry.as_str()]
+            .into_iter()
+            .chain(self.sets.iter().map(String::as_str))
+        {
+            hash.add(part.as_bytes());
+            hash.add(&[0]);
+        }
+        hash.add(&self.width.to_le_bytes());
+        hash.add(&self.height.to_le_bytes());
+        hash.add(self.reference.as_deref().unwrap_or("").as_bytes());
+        Ok(format!("{:016x}", hash.0))
+    }
+
+    /// The command that renders the same image.
+    pub fn command(&self) -> String {
+        let mut words = vec!["lumiere".to_string(), "render".into(), self.scene.clone()];
+        for set in &self.sets {
+            words.push("--set".into());
+            words.push(shell_quote(set));
+        }
+        words.extend([
+            "--width".into(),
+            self.width.to_string(),
+            "--height".into(),
+            self.height.to_string(),
+            "-o".into(),
+            "out.png".into(),
+        ]);
+        words.join(" ")
+    }
+}
+
+/// A rendered card, as the page shows it (paths relative to the site's root).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Card {
+    pub image: String,
+    pub seconds: f64,
+    pub buffers: Vec<Shown>,
+    pub agreement: Option<Agreement>,
+    /// The shooting solve's intermediate states, as an animation.
+    pub animation: Option<String>,
+    /// Shadow polygons: the plan of the lit and shadowed polygons.
+    pub plan: Option<String>,
+    /// What a radiosity solve did.
+    pub note: String,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Shown {
+    pub name: String,
+    pub description: String,
+    pub file: String,
+}
+
+/// The card's image against its reference's, as both display (8-bit sRGB).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Agreement {
+    pub rmse: f64,
+    pub differing_share: f64,
+    pub max_difference: u8,
+    pub difference: String,
+}
+
+/// Renders `spec` into `dir` (the site's `rel` folder); `reference` is the
+/// reference card's image file.
+pub fn render(
+    spec: &CardSpec,
+    page: &Page,
+    dir: &Path,
+    rel: &str,
+    reference: Option<&Path>,
+) -> Result<Card> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let mut sets = spec.sets.clone();
+    sets.push(format!("camera.width={}", spec.width));
+    sets.push(format!("camera.height={}", spec.height));
+    let scene = load_scene(&spec.scene, &sets)?;
+    let exposure = scene.render.exposure;
+    let mut renderer = Renderer::new(scene);
+    renderer.check()?;
+    let start = Instant::now();
+    let mut snapshots = Vec::new();
+    let mut note = String::new();
+    if let Some(settings) = renderer.scene().radiosity.clone() {
+        let scene = renderer.scene().clone();
+        let animate = settings.solver == Solver::Shooting;
+        let mut next = 1;
+        let solution = radiosity::solve(&scene, &settings, &mut |mesh, state| {
+            // Steps 1, 2, 4, 8…: the early states change most.
+            if animate && state.steps >= next {
+                next = state.steps * 2;
+                snapshots.push(Solution {
+                    mesh: mesh.clone(),
+                    elements: state.displayed(mesh, settings.ambient),
+                    direct: None,
+                    display: settings.display,
+                    summary: format!("step {}", state.steps),
+                });
+            }
+        })?;
+        note = solution.summary.clone();
+        renderer.set_radiosity_solution(Arc::new(solution));
+    }
+    let image = renderer.render()?;
+    let seconds = start.elapsed().as_secs_f64();
+    output::save(&image, &dir.join("image.png"), exposure)?;
+    let file = |name: &str| format!("{rel}/{name}");
+
+    let names: Vec<String> = available_buffers(&renderer)?
+        .into_iter()
+        .map(|b| b.name)
+        .filter(|n| page.shows_buffer(n))
+        .take(MAX_BUFFERS)
+        .collect();
+    let descriptions = available_buffers(&renderer)?;
+    let mut buffers = Vec::new();
+    if !names.is_empty() {
+        for buffer in renderer.render_with_buffers(&names)?.buffers {
+            let name = format!("buffer-{}.png", buffer.name);
+            output::save(&displayed(&buffer, exposure), &dir.join(&name), 1.0)?;
+            let description = descriptions
+                .iter()
+                .find(|d| d.name == buffer.name)
+                .map(|d| d.description.clone())
+                .unwrap_or_default();
+            buffers.push(Shown {
+                name: buffer.name,
+                description,
+                file: file(&name),
+            });
+        }
+    }
+
+    let animation = if snapshots.is_empty() {
+        None
+    } else {
+        let path = dir.join("progress.gif");
+        let out = std::fs::File::create(&path)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        let mut gif = output::Animation::new(std::io::BufWriter::new(out), exposure, 600);
+        for snapshot in snapshots {
+            let mut frame = Renderer::new(renderer.scene().clone());
+            frame.set_radiosity_solution(Arc::new(snapshot));
+            gif.add(&frame.render()?)?;
+        }
+        gif.add(&image)?;
+        gif.finish()?;
+        Some(file("progress.gif"))
+    };
+
+    let plan = if renderer.scene().shadows.method == ShadowMethod::ShadowPolygons {
+        super::super::shadow_polygons::plan_of(renderer.scene())
+            .ok()
+            .map(|bytes| -> Result<String> {
+                output::write_atomically(&dir.join("plan.png"), &bytes)?;
+                Ok(file("plan.png"))
+            })
+            .transpose()?
+    } else {
+        None
+    };
+
+    let agreement = match reference {
+        None => None,
+        Some(reference) => {
+            let theirs = output::load(reference)?;
+            let ours =
+                output::load_png_bytes(&output::encode(&image, output::Format::Png, exposure)?)?;
+            let c = output::compare(&theirs, &ours, 1.0)?;
+            let difference = output::difference_image(&theirs, &ours, 1.0, DIFFERENCE_GAIN);
+            output::save(&difference, &dir.join("difference.png"), 1.0)?;
+            Some(Agreement {
+                rmse: c.rmse,
+                differing_share: c.differing_share,
+                max_difference: c.max_difference,
+                difference: file("difference.png"),
+            })
+        }
+    };
+    Ok(Card {
+        image: file("image.png"),
+        seconds,
+        buffers,
+        agreement,
+        animation,
+        plan,
+        note,
+    })
+}
+
+/// A buffer as a picture: ids and counts colour-mapped; visibility and texture
+/// coordinates as they are; normals from [-1, 1]; radiance at the scene's
+/// exposure; other values (depths, positions, levels) stretched over their range.
+fn displayed(buffer: &Buffer, exposure: f32) -> Image {
+    let mut image = buffer.to_image(output::Format::Png);
+    if !matches!(buffer.data, BufferData::Values { .. }) {
+        return image;
+    }
+    let name = buffer.name.as_str();
+    if name.starts_with("visibility") || name == "uv" {
+        return image;
+    }
+    if name == "normal" {
+        for p in &mut image.pixels {
+            *p = (*p + 1.0) * 0.5;
+        }
+        return image;
+    }
+    if name == "radiosity" || name == "inscattered" {
+        let scale = if name == "radiosity" {
+            exposure / std::f32::consts::PI
+        } else {
+            exposure
+        };
+        for p in &mut image.pixels {
+            *p *= scale;
+        }
+        return image;
+    }
+    for channel in 0..3 {
+        let finite = image
+            .pixels
+            .iter()
+            .map(|p| p[channel])
+            .filter(|v| v.is_finite());
+        let (low, high) = finite.fold((f32::INFINITY, f32::NEG_INFINITY), |(l, h), v| {
+            (l.min(v), h.max(v))
+        });
+        let span = (high - low).max(f32::MIN_POSITIVE);
+        for p in &mut image.pixels {
+            let v = p[channel];
+            // What nothing covers (an infinite depth) shows white.
+            p[channel] = if v.is_finite() { (v - low) / span } else { 1.0 };
+        }
+    }
+    // Stretched values are shown as grey levels, not as linear radiance.
+    for p in &mut image.pixels {
+        *p = p.map(output::srgb_decode);
+    }
+    image
+}
+
+/// FNV-1a, 64 bits: a stable hash (the standard library's may change between
+/// releases, and cache keys outlive a build).
+pub struct Fnv(pub u64);
+
+impl Fnv {
+    pub fn new() -> Fnv {
+        Fnv(0xcbf2_9ce4_8422_2325)
+    }
+
+    pub fn add(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0 ^ b as u64).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+}
+
+/// `word` quoted for a POSIX shell when it needs it.
+fn shell_quote(word: &str) -> String {
+    if word
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || "-_.=/,:+".contains(c))
+    {
+        word.to_string()
+    } else {
+        format!("'{}'", word.replace('\'', "'\\''"))
+    }
+}
