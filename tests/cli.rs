@@ -172,6 +172,77 @@ fn lists_the_catalogue() {
 }
 
 #[test]
+fn lists_the_catalogue_by_topic_with_summaries() {
+    let dir = workspace(&[]);
+    let run = lumiere(&["list"], dir.path());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let headers: Vec<&str> = run.stdout.lines().filter(|l| l.ends_with(']')).collect();
+    assert_eq!(headers.len(), 8, "{headers:?}");
+    assert_eq!(headers[1], "Hard shadows [hard-shadows]");
+    // Each entry's summary follows it, indented.
+    let lines: Vec<&str> = run.stdout.lines().collect();
+    let at = lines
+        .iter()
+        .position(|l| l.starts_with("shadow-map-acne "))
+        .unwrap();
+    assert!(
+        lines[at + 1].starts_with("    The bias set to zero"),
+        "{}",
+        lines[at + 1]
+    );
+
+    let run = lumiere(&["list", "--topic", "radiosity", "--brief"], dir.path());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let ids: Vec<&str> = run
+        .stdout
+        .lines()
+        .skip(2)
+        .filter(|l| !l.is_empty())
+        .map(|l| l.split_whitespace().next().unwrap())
+        .collect();
+    assert_eq!(ids.len(), 7, "{ids:?}");
+    assert!(ids.contains(&"substructuring") && !ids.contains(&"cornell-box"));
+}
+
+#[test]
+fn show_prints_a_scene_that_renders_as_the_entry_does() {
+    let dir = workspace(&[]);
+    let run = lumiere(&["show", "shadow-map-acne"], dir.path());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stdout
+            .contains("# L. Williams, \"Casting curved shadows on curved surfaces\"")
+    );
+    assert!(run.stdout.contains("# The bias set to zero"));
+    assert!(run.stdout.contains("map_bias = 0.0"));
+    // Its own keys and those of the scene it extends, merged.
+    assert!(run.stdout.contains("[camera]") && run.stdout.contains("[[objects]]"));
+    let source = lumiere(&["show", "shadow-map-acne", "--source"], dir.path());
+    assert!(source.stdout.starts_with("[algorithm]"));
+    assert!(
+        source
+            .stdout
+            .contains("extends = \"ray-cast-shadows-curved\"")
+    );
+
+    let shown = lumiere(&["show", "cornell-box-point"], dir.path());
+    std::fs::write(dir.path().join("shown.toml"), &shown.stdout).unwrap();
+    let size = ["--width", "24", "--height", "24"];
+    for (scene, out) in [("shown.toml", "a.png"), ("cornell-box-point", "b.png")] {
+        let mut args = vec!["render", scene, "-o", out];
+        args.extend(size);
+        let run = lumiere(&args, dir.path());
+        assert_eq!(run.code, 0, "{}", run.stderr);
+    }
+    let read = |name: &str| std::fs::read(dir.path().join(name)).unwrap();
+    assert_eq!(read("a.png"), read("b.png"));
+    let run = lumiere(&["show", "cornell-bx"], dir.path());
+    assert_eq!(run.code, 1);
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    assert!(run.stderr.contains("cornell-box"), "{}", run.stderr);
+}
+
+#[test]
 fn malformed_toml_names_file_line_and_column() {
     let text = scene(CAMERA, "").replace("fov_y = 40.0", "fov_y = = 40.0");
     render_error(&[("s.toml", &text)], &["s.toml"], "s.toml:4:");

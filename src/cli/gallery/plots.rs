@@ -418,3 +418,64 @@ fn fmt(v: f64) -> String {
     let digits = (2 - v.abs().log10().floor() as i32).max(0) as usize;
     format!("{v:.digits$}")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The numbers of a drawn plot's caption.
+    fn numbers(caption: &str) -> Vec<f64> {
+        caption
+            .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .filter_map(|w| w.trim_end_matches('.').parse().ok())
+            .collect()
+    }
+
+    /// The y pixel of each point of each polyline.
+    fn polylines(svg: &str) -> Vec<Vec<f64>> {
+        svg.split("points=\"")
+            .skip(1)
+            .map(|p| {
+                let points = p.split('"').next().unwrap();
+                points
+                    .split(' ')
+                    .map(|xy| xy.split(',').nth(1).unwrap().parse().unwrap())
+                    .collect()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn hemicube_factors_converge_to_lamberts() {
+        let drawn = form_factor_error().unwrap();
+        let n = numbers(&drawn.caption);
+        // The exact factors by Lambert's formula, then the hemi-cube's relative
+        // error at 8 cells and at 512.
+        assert!(
+            (n[0] - 0.23946).abs() < 1e-4 && (n[1] - 0.19014).abs() < 1e-4,
+            "{n:?}"
+        );
+        let (coarse, fine) = (n[2], n[4]);
+        assert!(fine < 2e-3 && fine < coarse / 20.0, "{n:?}");
+    }
+
+    #[test]
+    fn gathering_residual_falls_every_sweep_and_shooting_never_grows() {
+        let lines = polylines(&radiosity_residual().unwrap().svg);
+        // SVG's y grows downwards: a falling residual is a growing y.
+        assert!(lines[0].windows(2).all(|w| w[1] > w[0]), "{:?}", lines[0]);
+        assert!(lines[1].windows(2).all(|w| w[1] >= w[0]));
+        assert!(lines[0].len() > 5 && lines[1].len() > 100);
+    }
+
+    #[test]
+    fn sampled_soft_shadows_approach_the_exact_one() {
+        let lines = polylines(&soft_shadow_convergence().unwrap().svg);
+        for line in &lines {
+            // From 1 sample to 256 the error falls by more than ten times: on a
+            // log axis of whole decades, more than one decade's height.
+            let decade = 292.0 / 3.0;
+            assert!(line[line.len() - 1] - line[0] > decade, "{line:?}");
+        }
+    }
+}

@@ -172,15 +172,26 @@ impl LinePlot {
                 r#"<polyline fill="none" stroke="{colour}" stroke-width="2" points="{}"/>"#,
                 path.join(" ")
             );
-            for (a, b) in &shown {
-                let _ = write!(
-                    out,
-                    r#"<circle cx="{a:.1}" cy="{b:.1}" r="3" fill="{colour}"/>"#
-                );
+            // Markers only where they can be told apart.
+            if shown.len() <= 40 {
+                for (a, b) in &shown {
+                    let _ = write!(
+                        out,
+                        r#"<circle cx="{a:.1}" cy="{b:.1}" r="3" fill="{colour}"/>"#
+                    );
+                }
             }
-            // The legend, top right.
+            // The legend, top right, on white over the curves.
             let ly = TOP + 8.0 + 18.0 * i as f64;
             let lx = WIDTH - RIGHT - 8.0;
+            let text_width = 7.0 * s.name.chars().count() as f64;
+            let _ = write!(
+                out,
+                r##"<rect x="{}" y="{}" width="{}" height="18" fill="#fff" fill-opacity="0.85"/>"##,
+                lx - 34.0 - text_width,
+                ly - 9.0,
+                40.0 + text_width,
+            );
             let _ = write!(
                 out,
                 r#"<line x1="{}" y1="{ly}" x2="{}" y2="{ly}" stroke="{colour}" stroke-width="2"/><text x="{}" y="{}" text-anchor="end">{}</text>"#,
@@ -276,5 +287,49 @@ impl BarChart {
         }
         out.push_str("</svg>\n");
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn log_axes_cover_the_data_by_whole_decades() {
+        let axis = Axis::new(Scale::Log, [0.003, 0.2].into_iter(), 0.0, 100.0);
+        assert_eq!(axis.ticks(), [1e-3, 1e-2, 1e-1, 1.0]);
+        assert!(axis.at(1e-3).abs() < 1e-9 && (axis.at(1.0) - 100.0).abs() < 1e-9);
+        assert!((axis.at(0.01) - 100.0 / 3.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn linear_axes_start_at_zero_with_round_steps() {
+        let axis = Axis::new(Scale::Linear, [0.04, 0.2241].into_iter(), 0.0, 1.0);
+        assert_eq!(axis.low, 0.0);
+        assert!((axis.high - 0.25).abs() < 1e-12, "{}", axis.high);
+        assert_eq!(axis.ticks().len(), 6);
+    }
+
+    #[test]
+    fn a_plot_draws_every_series_and_escapes_text() {
+        let series = |name: &str, points: Vec<(f64, f64)>| Series {
+            name: name.into(),
+            points,
+        };
+        let svg = LinePlot {
+            title: "a < b".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            x_scale: Scale::Log,
+            y_scale: Scale::Linear,
+            series: vec![
+                series("one", vec![(1.0, 1.0), (10.0, 2.0)]),
+                series("two", vec![(1.0, 3.0), (100.0, 0.5)]),
+            ],
+        }
+        .svg();
+        assert_eq!(svg.matches("<polyline").count(), 2);
+        assert_eq!(svg.matches("<circle").count(), 4);
+        assert!(svg.contains("a &lt; b") && !svg.contains("a < b"));
     }
 }

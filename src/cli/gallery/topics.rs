@@ -316,9 +316,10 @@ pub const PAGES: [Page; 8] = [
     Page {
         topic: Topic::Radiosity,
         intro: "The Cornell box lit by radiosity alone: the full system gathered by Gauss–Seidel \
-                with form factors from the analytic point-to-polygon formula (the reference), the \
-                hemi-cube and the Nusselt analog, and progressive shooting. The hemi-cube's item \
-                buffers are shown for element 0.",
+                with form factors from Lambert's point-to-polygon formula (the reference: exact \
+                where nothing lies between, its occlusion sampled at five points of the patch), \
+                the hemi-cube and the Nusselt analog, and progressive shooting to 1% unshot power. \
+                The hemi-cube's item buffers are shown for element 0.",
         variants: &[
             variant(
                 "gathering, analytic form factors",
