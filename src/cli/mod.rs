@@ -20,6 +20,7 @@ macro_rules! out {
 
 mod bench;
 mod bench_radiosity;
+mod buffer_picture;
 mod compare;
 mod envmap;
 mod form_factors;
@@ -30,6 +31,7 @@ mod render;
 mod shadow_polygons;
 mod show;
 mod timing;
+mod view;
 
 use anyhow::Result;
 use clap::{CommandFactory, Parser, Subcommand};
@@ -51,6 +53,7 @@ enum Command {
     List(list::Args),
     Show(show::Args),
     Gallery(gallery::Args),
+    View(view::Args),
     Render(render::Args),
     Compare(compare::Args),
     Envmap(envmap::Args),
@@ -114,6 +117,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::List(a) => list::run(a),
         Command::Show(a) => show::run(a),
         Command::Gallery(a) => gallery::run(a),
+        Command::View(a) => view::run(a),
         Command::Render(a) => render::run(a),
         Command::Compare(a) => compare::run(a),
         Command::Envmap(a) => envmap::run(a),

@@ -5,7 +5,7 @@
 
 use super::topics::Page;
 use anyhow::{Context, Result};
-use lumiere::output::{self, Buffer, BufferData, Image};
+use lumiere::output;
 use lumiere::radiosity::{self, Solution, Solver};
 use lumiere::render::{Renderer, available_buffers};
 use lumiere::settings::ShadowMethod;
@@ -158,7 +158,11 @@ pub fn render(
     if !names.is_empty() {
         for buffer in renderer.render_with_buffers(&names)?.buffers {
             let name = format!("buffer-{}.png", buffer.name);
-            output::save(&displayed(&buffer, exposure), &dir.join(&name), 1.0)?;
+            output::save(
+                &super::super::buffer_picture::displayed(&buffer, exposure),
+                &dir.join(&name),
+                1.0,
+            )?;
             let description = descriptions
                 .iter()
                 .find(|d| d.name == buffer.name)
@@ -227,58 +231,6 @@ pub fn render(
         plan,
         note,
     })
-}
-
-/// A buffer as a picture: ids and counts colour-mapped; visibility and texture
-/// coordinates as they are; normals from [-1, 1]; radiance at the scene's
-/// exposure; other values (depths, positions, levels) stretched over their range.
-fn displayed(buffer: &Buffer, exposure: f32) -> Image {
-    let mut image = buffer.to_image(output::Format::Png);
-    if !matches!(buffer.data, BufferData::Values { .. }) {
-        return image;
-    }
-    let name = buffer.name.as_str();
-    if name.starts_with("visibility") || name == "uv" {
-        return image;
-    }
-    if name == "normal" {
-        for p in &mut image.pixels {
-            *p = (*p + 1.0) * 0.5;
-        }
-        return image;
-    }
-    if name == "radiosity" || name == "inscattered" {
-        let scale = if name == "radiosity" {
-            exposure / std::f32::consts::PI
-        } else {
-            exposure
-        };
-        for p in &mut image.pixels {
-            *p *= scale;
-        }
-        return image;
-    }
-    for channel in 0..3 {
-        let finite = image
-            .pixels
-            .iter()
-            .map(|p| p[channel])
-            .filter(|v| v.is_finite());
-        let (low, high) = finite.fold((f32::INFINITY, f32::NEG_INFINITY), |(l, h), v| {
-            (l.min(v), h.max(v))
-        });
-        let span = (high - low).max(f32::MIN_POSITIVE);
-        for p in &mut image.pixels {
-            let v = p[channel];
-            // What nothing covers (an infinite depth) shows white.
-            p[channel] = if v.is_finite() { (v - low) / span } else { 1.0 };
-        }
-    }
-    // Stretched values are shown as grey levels, not as linear radiance.
-    for p in &mut image.pixels {
-        *p = p.map(output::srgb_decode);
-    }
-    image
 }
 
 /// FNV-1a, 64 bits: a stable hash (the standard library's may change between

@@ -1,0 +1,310 @@
+//! The live viewer, tested for real: under a virtual X server (Xvfb), keys and
+//! mouse events from xdotool, screenshots of the window by ImageMagick's `import`.
+//! The picture must equal `lumiere render` of the same view, change when the
+//! method changes, when the light moves and when the camera turns, show two exact
+//! methods as identical in the split screen's difference, and the viewer must quit
+//! on its key with exit status 0. The project's script installs the X tools when
+//! missing (`.ci/run` runs it too).
+
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn installed() {
+    let all = ["Xvfb", "xdotool", "import"].iter().all(|tool| {
+        Command::new("sh")
+            .args(["-c", &format!("command -v {tool}")])
+            .stdout(Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success())
+    });
+    if !all {
+        let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/install-display.sh");
+        let status = Command::new(&script)
+            .status()
+            .expect("the install script runs");
+        assert!(status.success(), "{} failed", script.display());
+    }
+}
+
+/// A virtual X server on a display number nobody uses, stopped when dropped.
+struct Display {
+    server: Child,
+    name: String,
+}
+
+impl Drop for Display {
+    fn drop(&mut self) {
+        let _ = self.server.kill();
+        let _ = self.server.wait();
+    }
+}
+
+impl Display {
+    fn start() -> Display {
+        installed();
+        // Xvfb chooses a free display number and writes it on its standard output.
+        let mut server = Command::new("Xvfb")
+            .args([
+                "-displayfd",
+                "1",
+                "-screen",
+                "0",
+                "1024x768x24",
+                "-nolisten",
+                "tcp",
+            ])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("Xvfb starts");
+        let mut line = String::new();
+        std::io::BufRead::read_line(
+            &mut std::io::BufReader::new(server.stdout.take().unwrap()),
+            &mut line,
+        )
+        .unwrap();
+        let number: u32 = line.trim().parse().expect("Xvfb names its display");
+        let name = format!(":{number}");
+        Display { server, name }
+    }
+
+    fn command(&self, program: &str) -> Command {
+        let mut command = Command::new(program);
+        command
+            .env("DISPLAY", &self.name)
+            .env_remove("WAYLAND_DISPLAY");
+        command
+    }
+
+    fn xdotool(&self, args: &[&str]) -> String {
+        let out = self.command("xdotool").args(args).output().unwrap();
+        assert!(
+            out.status.success(),
+            "xdotool {args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stdout).trim().to_string()
+    }
+
+    /// The window's pixels (8-bit RGB), read from the X server.
+    fn screenshot(&self, window: &str) -> Vec<u8> {
+        let out = self
+            .command("import")
+            .args(["-window", window, "png:-"])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "import: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        image::load_from_memory(&out.stdout)
+            .unwrap()
+            .to_rgb8()
+            .into_raw()
+    }
+
+    /// The window's picture once it has stopped changing (the viewer refines a
+    /// moving view after it stops).
+    fn settled(&self, window: &str) -> Vec<u8> {
+        let mut last = self.screenshot(window);
+        let deadline = Instant::now() + Duration::from_secs(30);
+        loop {
+            std::thread::sleep(Duration::from_millis(400));
+            let now = self.screenshot(window);
+            if now == last {
+                return now;
+            }
+            assert!(Instant::now() < deadline, "the window never settled");
+            last = now;
+        }
+    }
+}
+
+const SIZE: &str = "160";
+
+/// `lumiere render` of the point-lit box at the viewer's size, as 8-bit RGB.
+fn rendered(dir: &Path, method: &str) -> Vec<u8> {
+    render(dir, &["cornell-box-point", "--shadows", method])
+}
+
+fn render(dir: &Path, args: &[&str]) -> Vec<u8> {
+    let out = dir.join("render.png");
+    let status = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .arg("render")
+        .args(args)
+        .args(["--width", SIZE, "--height", SIZE, "-o"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    image::open(&out).unwrap().to_rgb8().into_raw()
+}
+
+/// The viewer on `args`, its window found and focused.
+fn open(display: &Display, args: &[&str], title: &str) -> (Child, String) {
+    let viewer = display
+        .command(env!("CARGO_BIN_EXE_lumiere"))
+        .arg("view")
+        .args(args)
+        .args(["--width", SIZE, "--height", SIZE])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let window = display.xdotool(&["search", "--sync", "--name", title]);
+    let window = window.lines().next().unwrap().to_string();
+    display.xdotool(&["windowfocus", "--sync", &window]);
+    (viewer, window)
+}
+
+/// Sends q and waits for the viewer to end with status 0.
+fn quit(display: &Display, mut viewer: Child) {
+    display.xdotool(&["key", "q"]);
+    let deadline = Instant::now() + Duration::from_secs(20);
+    let status = loop {
+        if let Some(status) = viewer.try_wait().unwrap() {
+            break status;
+        }
+        assert!(Instant::now() < deadline, "the viewer did not quit");
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let out = viewer.wait_with_output().unwrap();
+    assert!(status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+/// Pixels (of 3 bytes) that differ.
+fn differing(a: &[u8], b: &[u8]) -> usize {
+    assert_eq!(a.len(), b.len());
+    a.chunks(3).zip(b.chunks(3)).filter(|(p, q)| p != q).count()
+}
+
+#[test]
+fn the_viewer_shows_what_render_makes_and_follows_keys_and_mouse() {
+    let display = Display::start();
+    let dir = tempfile::tempdir().unwrap();
+    let (viewer, window) = open(
+        &display,
+        &["cornell-box-point", "--shadows", "scanline"],
+        "lumiere: cornell-box-point",
+    );
+    let key = |k: &str| display.xdotool(&["key", k]);
+
+    // The overlay hidden, the picture is render's, byte for byte.
+    key("h");
+    let scanline = display.settled(&window);
+    assert_eq!(scanline.len(), 160 * 160 * 3);
+    assert_eq!(differing(&scanline, &rendered(dir.path(), "scanline")), 0);
+
+    // Method 1 is no shadows: another picture, render's too.
+    key("1");
+    let none = display.settled(&window);
+    assert!(differing(&none, &scanline) > 500);
+    assert_eq!(differing(&none, &rendered(dir.path(), "none")), 0);
+
+    // Back to scan-line shadows (method 3), then the split screen with the next
+    // method, shadow polygons: exact both, so their difference is black.
+    key("3");
+    assert_eq!(display.settled(&window), scanline);
+    key("s");
+    let split = display.settled(&window);
+    // Only the divider between the halves differs.
+    assert_eq!(differing(&split, &scanline), 160);
+    key("d");
+    let difference = display.settled(&window);
+    assert!(difference.iter().all(|&c| c == 0), "exact methods differ");
+    key("d");
+    key("s");
+    assert_eq!(display.settled(&window), scanline);
+
+    // A buffer instead of the picture (the polygon ids first); a number key
+    // brings the picture back.
+    key("b");
+    let buffer = display.settled(&window);
+    assert!(differing(&buffer, &scanline) > 1000);
+    key("3");
+    assert_eq!(display.settled(&window), scanline);
+
+    // The light moves left, and the shadows with it; moved back, the picture is
+    // the first again (the light's shadows were made again, twice).
+    for _ in 0..3 {
+        key("Left");
+    }
+    let moved = display.settled(&window);
+    assert!(differing(&moved, &scanline) > 200);
+    for _ in 0..3 {
+        key("Right");
+    }
+    assert_eq!(display.settled(&window), scanline);
+
+    // A drag turns the camera.
+    display.xdotool(&[
+        "mousemove",
+        "--window",
+        &window,
+        "40",
+        "80",
+        "mousedown",
+        "1",
+    ]);
+    for x in [50, 60, 70, 80, 90, 100] {
+        display.xdotool(&["mousemove", "--window", &window, &x.to_string(), "80"]);
+    }
+    display.xdotool(&["mouseup", "1"]);
+    let turned = display.settled(&window);
+    assert!(differing(&turned, &scanline) > 1000);
+
+    quit(&display, viewer);
+}
+
+#[test]
+fn progressive_radiosity_shows_its_intermediate_states_and_ends_as_render_does() {
+    let display = Display::start();
+    let dir = tempfile::tempdir().unwrap();
+    let (viewer, window) = open(
+        &display,
+        &["radiosity-shooting"],
+        "lumiere: radiosity-shooting",
+    );
+    display.xdotool(&["key", "h"]);
+    // Shooting hands its state over as it goes: the picture changes several times
+    // before it settles.
+    let mut states = vec![display.screenshot(&window)];
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        std::thread::sleep(Duration::from_millis(100));
+        let now = display.screenshot(&window);
+        if now != *states.last().unwrap() {
+            states.push(now);
+            continue;
+        }
+        // Unchanged for a while: the solve has ended.
+        std::thread::sleep(Duration::from_millis(1500));
+        if display.screenshot(&window) == now {
+            break;
+        }
+        assert!(Instant::now() < deadline, "the solve never ended");
+    }
+    assert!(states.len() >= 4, "{} states seen", states.len());
+    let last = states.last().unwrap();
+    assert_eq!(
+        differing(last, &render(dir.path(), &["radiosity-shooting"])),
+        0
+    );
+    quit(&display, viewer);
+}
+
+#[test]
+fn without_a_display_the_viewer_says_so_in_one_line() {
+    let out = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(["view", "cornell-box-point"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("needs a display"), "{stderr}");
+}
