@@ -296,6 +296,29 @@ fn progressive_radiosity_shows_its_intermediate_states_and_ends_as_render_does()
 }
 
 #[test]
+fn the_texture_filter_key_forces_a_filter_on_every_texture() {
+    let display = Display::start();
+    let dir = tempfile::tempdir().unwrap();
+    let (viewer, window) = open(&display, &["mip-mapping"], "lumiere: mip-mapping");
+    display.xdotool(&["key", "h"]);
+    let scene = display.settled(&window);
+    assert_eq!(differing(&scene, &render(dir.path(), &["mip-mapping"])), 0);
+    // The first filter is point sampling, on both planes.
+    display.xdotool(&["key", "f"]);
+    let nearest = display.settled(&window);
+    assert!(differing(&nearest, &scene) > 500);
+    let both = [
+        "mip-mapping",
+        "--set",
+        "textures.point.filter=\"nearest\"",
+        "--set",
+        "textures.trilinear.filter=\"nearest\"",
+    ];
+    assert_eq!(differing(&nearest, &render(dir.path(), &both)), 0);
+    quit(&display, viewer);
+}
+
+#[test]
 fn without_a_display_the_viewer_says_so_in_one_line() {
     let out = Command::new(env!("CARGO_BIN_EXE_lumiere"))
         .args(["view", "cornell-box-point"])

@@ -33,7 +33,8 @@ use winit::window::{Window, WindowId};
 /// Mouse: drag to orbit, wheel to zoom. Keys: 1-9 the method (shadow method, or
 /// radiosity solver); s split screen with the next method, d its difference; b
 /// cycle the intermediate buffers; f the texture filter; tab the light, arrows
-/// and page up/down move it; p pause the radiosity solve; h hide the overlay;
+/// and page up/down move it; p pause the radiosity solve, . one step while
+/// paused; h hide the overlay;
 /// q or escape quit.
 #[derive(clap::Args, Debug)]
 #[command(allow_negative_numbers = true)]
@@ -271,6 +272,7 @@ impl Viewer {
                 session.forget_renderers();
             }
             Key::Character("p") => session.toggle_pause(),
+            Key::Character(".") => session.step(),
             Key::Character("h") => self.hud = !self.hud,
             Key::Named(NamedKey::Tab) => {
                 session.light = (session.light + 1) % session.scene.lights.len().max(1);
@@ -391,7 +393,7 @@ impl Viewer {
             .collect();
         lines.extend(wrap(&modes, " | ", hud::columns(width)));
         lines.push(
-            "drag orbit, wheel zoom, s split, d difference, b buffers, f filter, tab/arrows light, h hide, q quit"
+            "drag orbit, wheel zoom, s split, d difference, b buffers, f filter, tab/arrows light, p pause . step, h hide, q quit"
                 .into(),
         );
         lines

@@ -5,7 +5,7 @@
 use lumiere::radiosity::receivers::Receivers;
 use lumiere::radiosity::{self, Estimator, Settings, Shooting, Solution, Solver};
 use lumiere::scene::Scene;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
@@ -16,6 +16,8 @@ pub struct Progressive {
     newest: Arc<Mutex<Option<Solution>>>,
     stop: Arc<AtomicBool>,
     pause: Arc<AtomicBool>,
+    /// Steps to take while paused.
+    steps: Arc<AtomicUsize>,
     finished: Arc<AtomicBool>,
     /// Whether a state was ever handed over.
     started: bool,
@@ -32,6 +34,7 @@ impl Progressive {
         let newest = Arc::new(Mutex::new(None));
         let stop = Arc::new(AtomicBool::new(false));
         let pause = Arc::new(AtomicBool::new(false));
+        let steps = Arc::new(AtomicUsize::new(0));
         let finished = Arc::new(AtomicBool::new(false));
         let (n, s, p, f) = (
             newest.clone(),
@@ -39,9 +42,10 @@ impl Progressive {
             pause.clone(),
             finished.clone(),
         );
+        let k = steps.clone();
         std::thread::spawn(move || {
             let result = match settings.solver {
-                Solver::Shooting => shoot(&scene, &settings, &n, &s, &p),
+                Solver::Shooting => shoot(&scene, &settings, &n, &s, &p, &k),
                 Solver::Gathering => radiosity::solve(&scene, &settings, &mut |_, _| {})
                     .map(|solution| *n.lock().expect("no poisoned lock") = Some(solution)),
             };
@@ -54,6 +58,7 @@ impl Progressive {
             newest,
             stop,
             pause,
+            steps,
             finished,
             started: false,
         }
@@ -77,6 +82,11 @@ impl Progressive {
     pub fn toggle_pause(&self) {
         self.pause.fetch_xor(true, Ordering::Relaxed);
     }
+
+    /// One more step while paused (the course's step-by-step observation).
+    pub fn step(&self) {
+        self.steps.fetch_add(1, Ordering::Relaxed);
+    }
 }
 
 /// Progressive refinement, step by step, handing over the displayed state.
@@ -86,6 +96,7 @@ fn shoot(
     newest: &Mutex<Option<Solution>>,
     stop: &AtomicBool,
     pause: &AtomicBool,
+    steps: &AtomicUsize,
 ) -> lumiere::Result<()> {
     let mesh = radiosity::mesh(scene, settings)?;
     let estimator = Estimator::new(settings.form_factors, settings.resolution, scene);
@@ -109,14 +120,20 @@ fn shoot(
         if stop.load(Ordering::Relaxed) {
             return Ok(());
         }
-        if pause.load(Ordering::Relaxed) {
+        // Paused, it shoots only the steps asked for, and shows each.
+        let paused = pause.load(Ordering::Relaxed);
+        if paused
+            && steps
+                .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |n| n.checked_sub(1))
+                .is_err()
+        {
             std::thread::sleep(Duration::from_millis(20));
             continue;
         }
         let done = state.steps >= settings.max_steps
             || state.unshot_fraction(&mesh) <= settings.unshot
             || !state.step(&mesh, &elements, &estimator);
-        if done || last.elapsed() >= EVERY {
+        if done || paused || last.elapsed() >= EVERY {
             hand_over(&state);
             last = Instant::now();
         }

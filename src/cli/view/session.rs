@@ -225,6 +225,12 @@ impl Session {
         self.solves.values().any(|s| !s.finished())
     }
 
+    pub fn step(&mut self) {
+        if let Some(s) = self.solves.get(&(self.mode, self.filter)) {
+            s.step();
+        }
+    }
+
     pub fn toggle_pause(&mut self) {
         if let Some(s) = self.solves.get(&(self.mode, self.filter)) {
             s.toggle_pause();
