@@ -18,19 +18,7 @@ impl StagedDirectory {
     /// Makes `target` (if missing) and a staging directory beside it.
     pub fn create(target: &Path) -> Result<StagedDirectory> {
         std::fs::create_dir_all(target).map_err(|e| Error::io(FileOp::Write, target, e))?;
-        let parent = match target.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
-        let staging = tempfile::Builder::new()
-            .prefix(".lumiere-staging-")
-            .tempdir_in(parent)
-            .map_err(|e| Error::io(FileOp::WriteIn, parent, without_temporary_name(e, parent)))?;
-        Ok(StagedDirectory {
-            target: target.to_path_buf(),
-            _unfinished: Unfinished::track(staging.path()),
-            staging,
-        })
+        StagedDirectory::for_replacing(target)
     }
 
     /// A staging directory for a `target` directory that is replaced whole when
