@@ -328,7 +328,7 @@ impl Session {
             return Ok(None);
         };
         let rendered = self.renderers[&(mode, self.filter)].render_with_buffers(&[name])?;
-        let picture = crate::lumiere_cli::buffer_picture::displayed(&rendered.buffers[0], exposure);
+        let picture = super::super::buffer_picture::displayed(&rendered.buffers[0], exposure);
         Ok(Some(to_frame(&picture, 1.0)))
     }
 
