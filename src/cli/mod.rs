@@ -23,6 +23,7 @@ mod bench_radiosity;
 mod buffer_picture;
 mod compare;
 mod envmap;
+mod export;
 mod form_factors;
 mod gallery;
 mod list;
@@ -54,6 +55,7 @@ enum Command {
     Show(show::Args),
     Gallery(gallery::Args),
     View(view::Args),
+    Export(export::Args),
     Render(render::Args),
     Compare(compare::Args),
     Envmap(envmap::Args),
@@ -118,6 +120,7 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Show(a) => show::run(a),
         Command::Gallery(a) => gallery::run(a),
         Command::View(a) => view::run(a),
+        Command::Export(a) => export::run(a),
         Command::Render(a) => render::run(a),
         Command::Compare(a) => compare::run(a),
         Command::Envmap(a) => envmap::run(a),
