@@ -1,0 +1,298 @@
+#!/usr/bin/env python3
+"""The peer benchmark behind bench/peers.sh: see that script, and BENCHMARKS.md for
+what it writes. Every scene is exported by `lumiere export`, so the three renderers
+see the same camera, geometry, materials and lights."""
+
+import argparse
+import math
+import os
+import platform
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import flip_evaluator as flip
+import mitsuba as mi
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+LUMIERE = os.path.join(ROOT, "target", "release", "lumiere")
+mi.set_variant("scalar_rgb")
+
+
+# A growth run longer than this is stopped and shown as "> LIMIT s".
+LIMIT = 120
+
+
+def run(command, cwd, limit=None):
+    """Wall time (s) and peak memory (MB) of a whole process; None past `limit`."""
+    start = time.perf_counter()
+    timed = ["/usr/bin/time", "-f", "%M"] + command
+    try:
+        result = subprocess.run(timed, cwd=cwd, capture_output=True, text=True, timeout=limit)
+    except subprocess.TimeoutExpired:
+        return None
+    wall = time.perf_counter() - start
+    if result.returncode != 0:
+        sys.exit(f"{' '.join(command)} failed:\n{result.stderr}")
+    peak_kb = int(result.stderr.strip().splitlines()[-1])
+    return wall, peak_kb / 1024
+
+
+def timed(command, cwd, runs):
+    walls, peaks = [], []
+    for _ in range(runs):
+        wall, peak = run(command, cwd)
+        walls.append(wall)
+        peaks.append(peak)
+    return statistics.median(walls), min(walls), max(walls), max(peaks)
+
+
+def load(path):
+    return np.array(mi.Bitmap(path), dtype=np.float32)[:, :, :3]
+
+
+def srgb(linear):
+    c = np.clip(linear, 0.0, 1.0)
+    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1 / 2.4) - 0.055)
+
+
+def quality(reference, test):
+    """FLIP (NVIDIA's perceptual difference, on sRGB) and RMSE of sRGB values."""
+    a, b = srgb(load(reference)).astype(np.float32), srgb(load(test)).astype(np.float32)
+    _, mean, _ = flip.evaluate(a, b, "LDR")
+    return float(mean), float(np.sqrt(np.mean((a - b) ** 2)))
+
+
+MITSUBA_RENDER = (
+    "import mitsuba as mi, sys\nmi.set_variant('scalar_rgb')\n"
+    "mi.util.write_bitmap(sys.argv[2], mi.render(mi.load_file(sys.argv[1])))\n"
+)
+
+
+class Bench:
+    def __init__(self, args, work):
+        self.size = args.size
+        self.runs = args.runs
+        self.reference_spp = args.reference_spp
+        self.work = work
+        self.rows = []
+
+    def lumiere(self, *words):
+        return [LUMIERE, *words]
+
+    def export(self, scene, fmt, out, sets, spp=16, integrator=None):
+        words = ["export", scene, "--format", fmt, "-o", out, "--width", str(self.size),
+                 "--height", str(self.size), "--spp", str(spp)]
+        if integrator:
+            words += ["--integrator", integrator]
+        for s in sets:
+            words += ["--set", s]
+        subprocess.run(self.lumiere(*words), cwd=self.work, check=True, capture_output=True)
+
+    def mitsuba(self, xml, exr):
+        return [sys.executable, "-c", MITSUBA_RENDER, xml, exr]
+
+    def povray(self, pov, exr):
+        # 4 x 4 samples in every pixel (non-adaptive), linear half-float EXR.
+        return ["povray", f"+I{pov}", f"+O{exr}", f"+W{self.size}", f"+H{self.size}", "+FE",
+                "File_Gamma=1.0", "+A0.0", "+AM1", "+R4", "-D", "-GA"]
+
+    def scene(self, title, scene, sets, methods, pov=True, integrator=None):
+        """Times lumiere's methods, POV-Ray and Mitsuba on `scene` and measures each
+        image against Mitsuba's converged render."""
+        tag = re.sub(r"[^a-z0-9]+", "-", title.lower()).strip("-")
+        reference = f"{tag}-reference.exr"
+        self.export(scene, "mitsuba", f"{tag}-reference.xml", sets, self.reference_spp, integrator)
+        run(self.mitsuba(f"{tag}-reference.xml", reference), self.work)
+        rows = []
+        for label, words in methods:
+            out = f"{tag}-{len(rows)}.exr"
+            command = self.lumiere("render", scene, "--width", str(self.size), "--height",
+                                   str(self.size), *words, "-o", out)
+            for s in sets:
+                command += ["--set", s]
+            rows.append(("lumiere " + label, *timed(command, self.work, self.runs),
+                         *quality(os.path.join(self.work, reference), os.path.join(self.work, out))))
+        if pov:
+            self.export(scene, "pov", f"{tag}.pov", sets)
+            out = f"{tag}-pov.exr"
+            rows.append(("POV-Ray 3.7, 16 samples per pixel",
+                         *timed(self.povray(f"{tag}.pov", out), self.work, self.runs),
+                         *quality(os.path.join(self.work, reference), os.path.join(self.work, out))))
+        self.export(scene, "mitsuba", f"{tag}-16.xml", sets, 16, integrator)
+        out = f"{tag}-mitsuba.exr"
+        rows.append(("Mitsuba 3 (scalar_rgb), 16 samples per pixel",
+                     *timed(self.mitsuba(f"{tag}-16.xml", out), self.work, self.runs),
+                     *quality(os.path.join(self.work, reference), os.path.join(self.work, out))))
+        self.rows.append((title, scene, sets, rows))
+        return rows
+
+    def growth(self, label, command_for, values):
+        """Time against a parameter (None past LIMIT: larger values are not tried),
+        and the exponent of the fit over all but the smallest value."""
+        times = []
+        for v in values:
+            measured = run(command_for(v), self.work, LIMIT) if not times or times[-1] else None
+            times.append(measured[0] if measured else None)
+        points = [(v, t) for v, t in zip(values[1:], times[1:]) if t]
+        if len(points) >= 2:
+            xs, ys = np.log([p[0] for p in points]), np.log([p[1] for p in points])
+            exponent = float(np.polyfit(xs, ys, 1)[0])
+        else:
+            exponent = float("nan")
+        return label, times, exponent
+
+
+SPHERE = """[camera]
+eye = [0.0, 3.0, 6.0]
+look_at = [0.0, 0.8, 0.0]
+fov_y = 40.0
+width = 512
+height = 512
+
+[materials.grey]
+diffuse = [0.6, 0.6, 0.6]
+
+[[objects]]
+shape = "quad"
+material = "grey"
+transform = [{{ scale = 10.0 }}]
+
+[[objects]]
+shape = "sphere"
+material = "grey"
+resolution = {resolution}
+transform = [{{ translate = [0.0, 1.0, 0.0] }}]
+{lights}"""
+
+
+def lights(n):
+    text = ""
+    for k in range(n):
+        angle = 2 * math.pi * k / n
+        text += (f"\n[[lights]]\ntype = \"point\"\nposition = [{3 * math.cos(angle):.4f}, 5.0, "
+                 f"{3 * math.sin(angle):.4f}]\nintensity = [{40.0 / n}, {40.0 / n}, {40.0 / n}]\n")
+    return text
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--output", default=os.path.join(ROOT, "BENCHMARKS.md"))
+    args = parser.parse_args()
+    args.size = 256 if args.quick else 512
+    args.runs = 3 if args.quick else 5
+    args.reference_spp = 256 if args.quick else 1024
+    work = tempfile.mkdtemp(prefix="lumiere-peers-")
+    bench = Bench(args, work)
+    hard = ["none", "scanline", "shadow-volumes", "shadow-polygons", "shadow-map", "ray-cast"]
+    ss4 = ["--supersample", "4"]
+    point = bench.scene("The point-lit Cornell box", "cornell-box-point", [],
+                        [(f"{m}, 4 x 4", ["--shadows", m, *ss4]) for m in hard])
+    bench.scene("The Cornell box under its quad light, direct light", "cornell-box", [],
+                [("umbra-penumbra (exact), 4 x 4", ["--shadows", "umbra-penumbra", *ss4]),
+                 ("ray-cast, 4 x 4 light samples, 4 x 4", ["--shadows", "ray-cast", *ss4])])
+    bench.scene("The diffuse Cornell box, every bounce", "cornell-box-global", [],
+                [("cornell-box-global (radiosity, exact direct), 2 x 2", ["--supersample", "2"])],
+                pov=False, integrator="path")
+    # The peers have no background colour (an environment would light the scene) and
+    # no Phong lobe: the curved scene is compared without either.
+    curved = bench.scene("The curved scene (3,353 polygons)", "ray-cast-shadows-curved",
+                         ["render.background=[0.0, 0.0, 0.0]", "materials.glossy.specular=[0.0, 0.0, 0.0]"],
+                         [(f"{m}, 1 x 1", ["--shadows", m]) for m in
+                          ["scanline", "shadow-volumes", "stencil-shadow-volumes", "shadow-polygons",
+                           "ray-cast"]] + [("shadow-polygons, 4 x 4", ["--shadows", "shadow-polygons", *ss4])])
+
+    # Cost growth.
+    growth = []
+    methods = ["none", "scanline", "shadow-volumes", "shadow-polygons", "shadow-map", "ray-cast"]
+    sizes = [256, 512, 1024, 2048] if args.quick else [256, 512, 1024, 2048, 4096]
+    for m in methods:
+        growth.append(("image side", m, *bench.growth(
+            m, lambda s, m=m: bench.lumiere("render", "cornell-box-point", "--shadows", m, "--width", str(s),
+                                            "--height", str(s), "-o", "g.pfm"), sizes)[1:], sizes))
+    counts = [1_000, 10_000, 100_000] if args.quick else [1_000, 10_000, 100_000, 1_000_000]
+    for m in methods:
+        def command(n, m=m):
+            path = os.path.join(work, f"sphere-{n}.toml")
+            with open(path, "w") as f:
+                f.write(SPHERE.format(resolution=round(math.sqrt(2 * n)), lights=lights(1)))
+            return bench.lumiere("render", path, "--shadows", m, "-o", "g.pfm")
+        growth.append(("polygons", m, *bench.growth(m, command, counts)[1:], counts))
+    numbers = [1, 2, 4, 8]
+    for m in methods:
+        def command(n, m=m):
+            path = os.path.join(work, f"lights-{n}.toml")
+            with open(path, "w") as f:
+                f.write(SPHERE.format(resolution=100, lights=lights(n)))
+            return bench.lumiere("render", path, "--shadows", m, "-o", "g.pfm")
+        growth.append(("lights", m, *bench.growth(m, command, numbers)[1:], numbers))
+
+    write(args, bench, point, curved, growth)
+
+
+def versions():
+    pov = subprocess.run(["povray", "--version"], capture_output=True, text=True)
+    pov = next((l for l in (pov.stdout + pov.stderr).splitlines() if l.startswith("POV-Ray")), "POV-Ray ?")
+    lum = subprocess.run([LUMIERE, "--version"], capture_output=True, text=True).stdout.strip()
+    cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
+    return lum, pov, f"Mitsuba {mi.__version__}", cpu
+
+
+def write(args, bench, point, curved, growth):
+    lum, pov, mts, cpu = versions()
+    out = ["# Benchmarks", "",
+           "Written by `bench/peers.sh" + (" --quick" if args.quick else "") + "`: every scene is exported by "
+           "`lumiere export`, rendered by lumiere, POV-Ray and Mitsuba at the same size with a box pixel "
+           "filter, each whole process timed (median of the runs, then the fastest and slowest) with its "
+           "peak memory; each image measured against Mitsuba's converged render (FLIP, NVIDIA's perceptual "
+           "difference, and the RMSE of sRGB values).", "",
+           f"- machine: {cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}",
+           f"- renderers: {lum}; {pov}; {mts}",
+           f"- images: {args.size} x {args.size}; {args.runs} runs each; references {args.reference_spp} "
+           "samples per pixel", ""]
+    for title, scene, sets, rows in bench.rows:
+        out += [f"## {title}", "", f"`{scene}`" + (f" with {' '.join(sets)}" if sets else ""), "",
+                "| renderer | time (median; fastest-slowest) | peak memory | FLIP | RMSE |", "|---|---|---|---|---|"]
+        for label, median, low, high, peak, f, e in rows:
+            out.append(f"| {label} | {median:.3f} s ({low:.3f}-{high:.3f}) | {peak:.0f} MB | {f:.4f} | {e:.4f} |")
+        out.append("")
+    pov_time = next(r[1] for r in point if r[0].startswith("POV-Ray"))
+    out += ["## Targets", "", "| target | measured | holds |", "|---|---|---|"]
+    for label, median, *_ in point:
+        if label.startswith("lumiere") and "none" not in label and "ray-cast" not in label:
+            ratio = pov_time / median
+            out.append(f"| point-lit box, {label}: 20 x faster than POV-Ray | {ratio:.1f} x ({median:.3f} s against {pov_time:.3f} s) | {'yes' if ratio >= 20 else 'no'} |")
+    none = next(r for r in point if "none" in r[0])
+    samples = args.size * args.size * 16
+    out.append(f"| point-lit box, no shadows: 100 M samples per second, whole process | {samples / none[1] / 1e6:.0f} M samples/s | {'yes' if samples / none[1] >= 1e8 else 'no'} |")
+    out.append(f"| point-lit box, no shadows: under 100 MB | {none[4]:.0f} MB | {'yes' if none[4] < 100 else 'no'} |")
+    for label, median, *_ in curved:
+        if "1 x 1" in label and "ray-cast" not in label:
+            out.append(f"| curved scene, {label}: under 100 ms | {median * 1000:.0f} ms | {'yes' if median < 0.1 else 'no'} |")
+    out += ["", "## Cost growth", "",
+            "Whole-process time of `lumiere render` against one parameter, the others fixed; the exponent "
+            "is the slope of log time against log parameter over all but the smallest value (1: linear). "
+            "Image side: the point-lit Cornell box, one sample per pixel (the work grows as the side "
+            "squared: 2 is linear in pixels). Polygons: a tessellated sphere over a ground quad, 512 x 512, "
+            "one point light. Lights: the sphere at 5,000 polygons under 1 to 8 point lights.", ""]
+    for kind in ["image side", "polygons", "lights"]:
+        rows = [g for g in growth if g[0] == kind]
+        values = rows[0][4]
+        out += [f"| {kind} | " + " | ".join(f"{v:,}" for v in values) + " | exponent |",
+                "|---|" + "---|" * (len(values) + 1)]
+        for _, method, times, exponent, _ in rows:
+            shown = [f"{t:.3f} s" if t else f"> {LIMIT} s" for t in times]
+            out.append(f"| {method} | " + " | ".join(shown) + f" | {exponent:.2f} |")
+        out.append("")
+    with open(args.output, "w") as f:
+        f.write("\n".join(out))
+    print(f"wrote {args.output}")
+
+
+if __name__ == "__main__":
+    main()
