@@ -105,6 +105,17 @@ impl Display {
             .into_raw()
     }
 
+    /// The window's picture once it has changed from `before` and stopped
+    /// changing.
+    fn settled_after(&self, window: &str, before: &[u8]) -> Vec<u8> {
+        let deadline = Instant::now() + Duration::from_secs(20);
+        while self.screenshot(window) == before {
+            assert!(Instant::now() < deadline, "the window never changed");
+            std::thread::sleep(Duration::from_millis(50));
+        }
+        self.settled(window)
+    }
+
     /// The window's picture once it has stopped changing (the viewer refines a
     /// moving view after it stops).
     fn settled(&self, window: &str) -> Vec<u8> {
@@ -153,8 +164,28 @@ fn open(display: &Display, args: &[&str], title: &str) -> (Child, String) {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let window = display.xdotool(&["search", "--sync", "--name", title]);
-    let window = window.lines().next().unwrap().to_string();
+    // The window, once it is there (and never waiting on a viewer that has ended).
+    let mut viewer = viewer;
+    let deadline = Instant::now() + Duration::from_secs(30);
+    let window = loop {
+        let out = display
+            .command("xdotool")
+            .args(["search", "--name", title])
+            .output()
+            .unwrap();
+        if let Some(id) = String::from_utf8_lossy(&out.stdout).lines().next() {
+            break id.to_string();
+        }
+        if let Some(status) = viewer.try_wait().unwrap() {
+            let out = viewer.wait_with_output().unwrap();
+            panic!(
+                "the viewer ended ({status}): {}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+        assert!(Instant::now() < deadline, "no window appeared");
+        std::thread::sleep(Duration::from_millis(50));
+    };
     display.xdotool(&["windowfocus", "--sync", &window]);
     (viewer, window)
 }
@@ -189,54 +220,47 @@ fn the_viewer_shows_what_render_makes_and_follows_keys_and_mouse() {
         &["cornell-box-point", "--shadows", "scanline"],
         "lumiere: cornell-box-point",
     );
-    let key = |k: &str| display.xdotool(&["key", k]);
+    // Each step presses its keys and waits for the picture to change, then to
+    // settle: two equal screenshots alone could be a window not yet redrawn.
+    let press = |keys: &[&str]| {
+        let before = display.screenshot(&window);
+        for k in keys {
+            display.xdotool(&["key", k]);
+        }
+        display.settled_after(&window, &before)
+    };
 
     // The overlay hidden, the picture is render's, byte for byte.
-    key("h");
-    let scanline = display.settled(&window);
+    let scanline = press(&["h"]);
     assert_eq!(scanline.len(), 160 * 160 * 3);
     assert_eq!(differing(&scanline, &rendered(dir.path(), "scanline")), 0);
 
     // Method 1 is no shadows: another picture, render's too.
-    key("1");
-    let none = display.settled(&window);
+    let none = press(&["1"]);
     assert!(differing(&none, &scanline) > 500);
     assert_eq!(differing(&none, &rendered(dir.path(), "none")), 0);
 
     // Back to scan-line shadows (method 3), then the split screen with the next
     // method, shadow polygons: exact both, so their difference is black.
-    key("3");
-    assert_eq!(display.settled(&window), scanline);
-    key("s");
-    let split = display.settled(&window);
+    assert_eq!(press(&["3"]), scanline);
+    let split = press(&["s"]);
     // Only the divider between the halves differs.
     assert_eq!(differing(&split, &scanline), 160);
-    key("d");
-    let difference = display.settled(&window);
+    let difference = press(&["d"]);
     assert!(difference.iter().all(|&c| c == 0), "exact methods differ");
-    key("d");
-    key("s");
-    assert_eq!(display.settled(&window), scanline);
+    assert_eq!(press(&["d", "s"]), scanline);
 
     // A buffer instead of the picture (the polygon ids first); a number key
     // brings the picture back.
-    key("b");
-    let buffer = display.settled(&window);
+    let buffer = press(&["b"]);
     assert!(differing(&buffer, &scanline) > 1000);
-    key("3");
-    assert_eq!(display.settled(&window), scanline);
+    assert_eq!(press(&["3"]), scanline);
 
     // The light moves left, and the shadows with it; moved back, the picture is
     // the first again (the light's shadows were made again, twice).
-    for _ in 0..3 {
-        key("Left");
-    }
-    let moved = display.settled(&window);
+    let moved = press(&["Left", "Left", "Left"]);
     assert!(differing(&moved, &scanline) > 200);
-    for _ in 0..3 {
-        key("Right");
-    }
-    assert_eq!(display.settled(&window), scanline);
+    assert_eq!(press(&["Right", "Right", "Right"]), scanline);
 
     // A drag turns the camera.
     display.xdotool(&[
@@ -252,7 +276,7 @@ fn the_viewer_shows_what_render_makes_and_follows_keys_and_mouse() {
         display.xdotool(&["mousemove", "--window", &window, &x.to_string(), "80"]);
     }
     display.xdotool(&["mouseup", "1"]);
-    let turned = display.settled(&window);
+    let turned = display.settled_after(&window, &scanline);
     assert!(differing(&turned, &scanline) > 1000);
 
     quit(&display, viewer);
@@ -273,6 +297,7 @@ fn progressive_radiosity_shows_its_intermediate_states_and_ends_as_render_does()
     let mut states = vec![display.screenshot(&window)];
     let deadline = Instant::now() + Duration::from_secs(60);
     loop {
+        assert!(Instant::now() < deadline, "the solve never ended");
         std::thread::sleep(Duration::from_millis(100));
         let now = display.screenshot(&window);
         if now != *states.last().unwrap() {
@@ -284,7 +309,6 @@ fn progressive_radiosity_shows_its_intermediate_states_and_ends_as_render_does()
         if display.screenshot(&window) == now {
             break;
         }
-        assert!(Instant::now() < deadline, "the solve never ended");
     }
     assert!(states.len() >= 4, "{} states seen", states.len());
     let last = states.last().unwrap();
@@ -300,12 +324,13 @@ fn the_texture_filter_key_forces_a_filter_on_every_texture() {
     let display = Display::start();
     let dir = tempfile::tempdir().unwrap();
     let (viewer, window) = open(&display, &["mip-mapping"], "lumiere: mip-mapping");
+    let before = display.screenshot(&window);
     display.xdotool(&["key", "h"]);
-    let scene = display.settled(&window);
+    let scene = display.settled_after(&window, &before);
     assert_eq!(differing(&scene, &render(dir.path(), &["mip-mapping"])), 0);
     // The first filter is point sampling, on both planes.
     display.xdotool(&["key", "f"]);
-    let nearest = display.settled(&window);
+    let nearest = display.settled_after(&window, &scene);
     assert!(differing(&nearest, &scene) > 500);
     let both = [
         "mip-mapping",

@@ -301,5 +301,10 @@ fn bad_input_is_one_line_and_leaves_nothing_behind() {
         std::fs::read_to_string(dir.path().join("mine/notes.txt")).unwrap(),
         "keep"
     );
+    // A stray file named like the manifest does not make a directory a gallery.
+    std::fs::write(dir.path().join("mine/gallery.json"), "{\"notes\": 1}").unwrap();
+    let run = gallery(&["shading-modes", "-o", "mine"], dir.path());
+    one_line(&run, "holds no gallery");
+    assert!(dir.path().join("mine/notes.txt").exists());
     assert_eq!(leftovers(dir.path()), Vec::<String>::new());
 }

@@ -184,11 +184,40 @@ fn left_out(scene: &Scene, format: Format) -> Vec<String> {
                 m.name
             ));
         }
-        if m.mirror != Vec3::ZERO && format == Format::Pov {
-            say(format!(
-                "material `{}`: the mirror is left out of POV-Ray's direct light",
-                m.name
-            ));
+        if m.mirror != Vec3::ZERO {
+            say(match format {
+                Format::Pov => format!(
+                    "material `{}`: the mirror is left out of POV-Ray's direct light",
+                    m.name
+                ),
+                Format::Mitsuba => format!(
+                    "material `{}`: a one-sided conductor, without its diffuse part (black under the direct integrator)",
+                    m.name
+                ),
+            });
+        }
+    }
+    if format == Format::Mitsuba && scene.render.background != Vec3::ZERO {
+        say(
+            "the background colour is left out (Mitsuba's would be an emitter lighting the scene)"
+                .into(),
+        );
+    }
+    for (index, light) in scene.lights.iter().enumerate() {
+        match light {
+            lumiere::scene::Light::Sphere(_) if format == Format::Mitsuba => say(format!(
+                "{}: an emitting sphere, seen by the camera and casting shadows, which lumiere's is not",
+                light.label(index)
+            )),
+            lumiere::scene::Light::Polygon(l)
+                if format == Format::Pov && !parallelogram(&l.vertices) =>
+            {
+                say(format!(
+                    "{}: not a parallelogram: POV-Ray's area light spans the parallelogram of its first edges",
+                    light.label(index)
+                ))
+            }
+            _ => {}
         }
     }
     if scene.medium.is_some() {
@@ -217,4 +246,13 @@ pub fn sibling(output: &Path, suffix: &str) -> PathBuf {
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
     output.with_file_name(format!("{stem}{suffix}"))
+}
+
+/// Whether a polygon is a parallelogram (four corners, opposite edges equal).
+fn parallelogram(vertices: &[DVec3]) -> bool {
+    vertices.len() == 4 && {
+        let e = vertices[1] - vertices[0];
+        let f = vertices[2] - vertices[3];
+        (e - f).length() <= 1e-6 * e.length().max(f.length())
+    }
 }

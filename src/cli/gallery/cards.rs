@@ -31,6 +31,8 @@ pub struct CardSpec {
     pub height: u32,
     /// The key of the card this one is measured against.
     pub reference: Option<String>,
+    /// The page it is shown on, which chooses the buffers shown.
+    pub topic: lumiere::catalogue::Topic,
 }
 
 impl CardSpec {
@@ -49,6 +51,7 @@ impl CardSpec {
         hash.add(&self.width.to_le_bytes());
         hash.add(&self.height.to_le_bytes());
         hash.add(self.reference.as_deref().unwrap_or("").as_bytes());
+        hash.add(self.topic.name().as_bytes());
         Ok(format!("{:016x}", hash.0))
     }
 

@@ -47,6 +47,7 @@ pub struct Args {
 
 /// What the site's root records, to recognise an earlier gallery.
 #[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct Manifest {
     program: String,
     version: String,
@@ -114,6 +115,7 @@ pub fn run(args: Args) -> Result<()> {
                 width,
                 height,
                 reference: reference.as_ref().map(|r| r.0.clone()),
+                topic: page.topic,
             };
             let (key, card) = site.card(&spec, page)?;
             let method = catalogue::entry(variant.cites)?.algorithm;
@@ -156,6 +158,7 @@ pub fn run(args: Args) -> Result<()> {
                 width,
                 height,
                 reference: None,
+                topic: page.topic,
             };
             let (_, card) = site.card(&spec, page)?;
             body += &html::entry(&spec, &card, a, catalogue::source(&a.id)?);
@@ -223,7 +226,13 @@ fn earlier_gallery(output: &Path) -> Result<Option<PathBuf>> {
             output.display()
         );
     }
-    if output.join(MANIFEST).is_file() {
+    // A gallery is recognised by its manifest, read whole: a stray file of that
+    // name does not make a user's directory one to replace.
+    let manifest = std::fs::read_to_string(output.join(MANIFEST)).ok();
+    if manifest
+        .and_then(|text| serde_json::from_str::<Manifest>(&text).ok())
+        .is_some_and(|m| !m.program.is_empty() && !m.version.is_empty())
+    {
         return Ok(Some(output.to_path_buf()));
     }
     let empty = std::fs::read_dir(output)
@@ -369,6 +378,7 @@ fn index(
             width,
             height,
             reference: None,
+            topic: *topic,
         };
         let image = &site.cards[&spec.key(site.program)?].image;
         let count = entries

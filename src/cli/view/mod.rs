@@ -204,8 +204,10 @@ impl ApplicationHandler for Viewer {
     }
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
-        if self.session.poll_radiosity() {
-            self.changed(false);
+        match self.session.poll_radiosity() {
+            Ok(true) => self.changed(false),
+            Ok(false) => {}
+            Err(e) => return self.fail(event_loop, e),
         }
         let settling = self.moved.is_some_and(|t| t.elapsed() < SETTLE);
         if !settling && !self.refined {
@@ -267,7 +269,7 @@ impl Viewer {
             }
             Key::Character("d") => session.show_difference = !session.show_difference,
             Key::Character("b") => session.cycle_buffer()?,
-            Key::Character("f") => {
+            Key::Character("f") if session.textured() => {
                 session.cycle_filter();
                 session.forget_renderers();
             }
@@ -439,7 +441,7 @@ fn benchmark(session: &mut Session, scene: &str, frames: u32) -> Result<()> {
         session.mode = mode;
         let start = Instant::now();
         while session.frame(1)?.is_none() {
-            session.poll_radiosity();
+            session.poll_radiosity()?;
             std::thread::sleep(Duration::from_millis(10));
         }
         let first = start.elapsed();

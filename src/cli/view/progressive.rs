@@ -19,6 +19,8 @@ pub struct Progressive {
     /// Steps to take while paused.
     steps: Arc<AtomicUsize>,
     finished: Arc<AtomicBool>,
+    /// What a failed solve said.
+    failed: Arc<Mutex<Option<String>>>,
     /// Whether a state was ever handed over.
     started: bool,
 }
@@ -43,14 +45,16 @@ impl Progressive {
             finished.clone(),
         );
         let k = steps.clone();
+        let failed = Arc::new(Mutex::new(None));
+        let e = failed.clone();
         std::thread::spawn(move || {
             let result = match settings.solver {
                 Solver::Shooting => shoot(&scene, &settings, &n, &s, &p, &k),
                 Solver::Gathering => radiosity::solve(&scene, &settings, &mut |_, _| {})
                     .map(|solution| *n.lock().expect("no poisoned lock") = Some(solution)),
             };
-            if let Err(e) = result {
-                eprintln!("error: {e}");
+            if let Err(error) = result {
+                *e.lock().expect("no poisoned lock") = Some(error.to_string());
             }
             f.store(true, Ordering::Relaxed);
         });
@@ -60,6 +64,7 @@ impl Progressive {
             pause,
             steps,
             finished,
+            failed,
             started: false,
         }
     }
@@ -69,6 +74,14 @@ impl Progressive {
         let state = self.newest.lock().expect("no poisoned lock").take();
         self.started |= state.is_some();
         state
+    }
+
+    /// The solve's error, once it has failed.
+    pub fn failure(&self) -> anyhow::Result<()> {
+        match self.failed.lock().expect("no poisoned lock").as_ref() {
+            Some(e) => anyhow::bail!("{e}"),
+            None => Ok(()),
+        }
     }
 
     pub fn started(&self) -> bool {

@@ -86,6 +86,11 @@ impl Session {
     pub fn new(spec: &str, sets: Vec<String>) -> Result<Session> {
         let scene = load_scene(spec, &sets)?;
         let modes = modes(&scene)?;
+        if modes.is_empty() {
+            // No method can render it: the scene's own refusal says why.
+            Renderer::new(scene.clone()).check()?;
+            anyhow::bail!("no method of lumiere can render {spec}");
+        }
         let mode = modes
             .iter()
             .position(|m| {
@@ -205,9 +210,11 @@ impl Session {
 
     /// Hands each renderer the newest state of its background solve; whether any
     /// changed.
-    pub fn poll_radiosity(&mut self) -> bool {
+    /// A failed solve's error ends the viewer.
+    pub fn poll_radiosity(&mut self) -> Result<bool> {
         let mut changed = false;
         for (key, solve) in &mut self.solves {
+            solve.failure()?;
             if let Some(solution) = solve.newest() {
                 if *key == (self.mode, self.filter) {
                     self.status = solution.summary.clone();
@@ -218,7 +225,7 @@ impl Session {
                 }
             }
         }
-        changed
+        Ok(changed)
     }
 
     pub fn solving(&self) -> bool {
@@ -298,7 +305,17 @@ impl Session {
     /// Cycles through the current mode's buffers, then back to the image.
     pub fn cycle_buffer(&mut self) -> Result<()> {
         let mode = self.mode;
-        let renderer = self.renderer(mode)?;
+        self.renderer(mode)?;
+        // Until the background solve hands over a state, the buffers would solve
+        // the radiosity again on this thread.
+        if self
+            .solves
+            .get(&(mode, self.filter))
+            .is_some_and(|s| !s.started())
+        {
+            return Ok(());
+        }
+        let renderer = &self.renderers[&(mode, self.filter)];
         let names: Vec<String> = available_buffers(renderer)?
             .into_iter()
             .map(|b| b.name)
