@@ -114,6 +114,31 @@ pub fn usage_error_line(error: &clap::Error) -> String {
     format!("{line}; see `lumiere {subcommand}--help`")
 }
 
+/// `--width` and `--height`, shared by the commands that make an image.
+#[derive(clap::Args, Debug)]
+pub struct ImageSize {
+    /// Image width in pixels (overrides camera.width).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=lumiere::scene::MAX_SIDE as i64))]
+    width: Option<u32>,
+    /// Image height in pixels (overrides camera.height).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=lumiere::scene::MAX_SIDE as i64))]
+    height: Option<u32>,
+}
+
+impl ImageSize {
+    /// The sizes given, as scene-key overrides.
+    pub fn sets(&self) -> Vec<String> {
+        let mut sets = Vec::new();
+        if let Some(w) = self.width {
+            sets.push(format!("camera.width={w}"));
+        }
+        if let Some(h) = self.height {
+            sets.push(format!("camera.height={h}"));
+        }
+        sets
+    }
+}
+
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::List(a) => list::run(a),

@@ -3,7 +3,6 @@
 use anyhow::{Context, Result, bail};
 use lumiere::radiosity::{FormFactorMethod, Solver};
 use lumiere::render::{Renderer, available_buffers};
-use lumiere::scene::MAX_SIDE;
 use lumiere::shadow::ShadowMethod;
 use lumiere::{catalogue, load_scene, output};
 use std::path::PathBuf;
@@ -20,12 +19,8 @@ pub struct Args {
     /// Output image: .png (sRGB), .pfm or .exr (linear radiance).
     #[arg(short, long)]
     output: PathBuf,
-    /// Image width in pixels (overrides camera.width).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_SIDE as i64))]
-    width: Option<u32>,
-    /// Image height in pixels (overrides camera.height).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_SIDE as i64))]
-    height: Option<u32>,
+    #[command(flatten)]
+    size: super::ImageSize,
     /// N x N samples per pixel on a regular grid, averaged (box filter).
     #[arg(long)]
     supersample: Option<u32>,
@@ -99,12 +94,7 @@ pub fn run(args: Args) -> Result<()> {
         sets.push(format!("camera.height={}", a.test_height));
     }
     sets.extend(args.sets.iter().cloned());
-    if let Some(w) = args.width {
-        sets.push(format!("camera.width={w}"));
-    }
-    if let Some(h) = args.height {
-        sets.push(format!("camera.height={h}"));
-    }
+    sets.extend(args.size.sets());
     if let Some(n) = args.supersample {
         sets.push(format!("render.supersample={n}"));
     }

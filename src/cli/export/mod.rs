@@ -13,7 +13,7 @@ mod pov;
 use anyhow::{Result, bail};
 use glam::{DVec3, Vec3};
 use lumiere::load_scene;
-use lumiere::scene::{MAX_SIDE, Scene};
+use lumiere::scene::Scene;
 use std::path::{Path, PathBuf};
 
 /// Write a scene (a catalogue id or a .toml file) as POV-Ray SDL or Mitsuba 3 XML.
@@ -29,12 +29,8 @@ pub struct Args {
     /// The scene file written (.pov or .xml).
     #[arg(short, long)]
     output: PathBuf,
-    /// Image width in pixels (overrides camera.width).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_SIDE as i64))]
-    width: Option<u32>,
-    /// Image height in pixels (overrides camera.height).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_SIDE as i64))]
-    height: Option<u32>,
+    #[command(flatten)]
+    size: super::ImageSize,
     /// Mitsuba: samples per pixel of its stratified sampler.
     #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1 << 20))]
     spp: u32,
@@ -82,12 +78,7 @@ pub fn run(args: Args) -> Result<()> {
         );
     }
     let mut sets = args.sets.clone();
-    if let Some(w) = args.width {
-        sets.push(format!("camera.width={w}"));
-    }
-    if let Some(h) = args.height {
-        sets.push(format!("camera.height={h}"));
-    }
+    sets.extend(args.size.sets());
     let scene = load_scene(&args.scene, &sets)?;
     for warning in left_out(&scene, args.format) {
         eprintln!("warning: export: {warning}");

@@ -150,13 +150,13 @@ pub fn render(
     output::save(&image, &dir.join("image.png"), exposure)?;
     let file = |name: &str| format!("{rel}/{name}");
 
-    let names: Vec<String> = available_buffers(&renderer)?
+    // The buffers this page shows, with what each holds.
+    let shown: Vec<_> = available_buffers(&renderer)?
         .into_iter()
-        .map(|b| b.name)
-        .filter(|n| page.shows_buffer(n))
+        .filter(|b| page.shows_buffer(&b.name))
         .take(MAX_BUFFERS)
         .collect();
-    let descriptions = available_buffers(&renderer)?;
+    let names: Vec<String> = shown.iter().map(|b| b.name.clone()).collect();
     let mut buffers = Vec::new();
     if !names.is_empty() {
         for buffer in renderer.render_with_buffers(&names)?.buffers {
@@ -166,10 +166,10 @@ pub fn render(
                 &dir.join(&name),
                 1.0,
             )?;
-            let description = descriptions
+            let description = shown
                 .iter()
-                .find(|d| d.name == buffer.name)
-                .map(|d| d.description.clone())
+                .find(|b| b.name == buffer.name)
+                .map(|b| b.description.clone())
                 .unwrap_or_default();
             buffers.push(Shown {
                 name: buffer.name,

@@ -16,7 +16,6 @@ mod session;
 
 use anyhow::{Context, Result, bail};
 use glam::DVec3;
-use lumiere::scene::MAX_SIDE;
 use lumiere::shadow::ShadowMethod;
 use session::{Frame, Session};
 use std::num::NonZeroU32;
@@ -41,12 +40,8 @@ use winit::window::{Window, WindowId};
 pub struct Args {
     /// A catalogue id (see `lumiere list`) or the path of a .toml scene file.
     scene: String,
-    /// Window width in pixels (overrides camera.width).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_SIDE as i64))]
-    width: Option<u32>,
-    /// Window height in pixels (overrides camera.height).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=MAX_SIDE as i64))]
-    height: Option<u32>,
+    #[command(flatten)]
+    size: super::ImageSize,
     /// The shadow method shown first.
     #[arg(long, value_enum)]
     shadows: Option<ShadowMethod>,
@@ -64,12 +59,7 @@ const SETTLE: Duration = Duration::from_millis(120);
 
 pub fn run(args: Args) -> Result<()> {
     let mut sets = args.sets.clone();
-    if let Some(w) = args.width {
-        sets.push(format!("camera.width={w}"));
-    }
-    if let Some(h) = args.height {
-        sets.push(format!("camera.height={h}"));
-    }
+    sets.extend(args.size.sets());
     if let Some(method) = args.shadows {
         sets.push(format!("shadows.method=\"{}\"", method.name()));
     }
