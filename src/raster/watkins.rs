@@ -33,18 +33,21 @@ pub(super) const BAND_ROWS: u32 = 8;
 /// The visible surface at every sample of a `width × height` grid.
 pub fn rasterize(polygons: &[ScreenPolygon], width: u32, height: u32) -> VisibleSurface {
     let table = EdgeTable::build(polygons, height);
-    rasterize_rows(polygons, &table, width, 0..height, uv_gradients(polygons))
+    let gradients = uv_gradients(polygons);
+    rasterize_rows(polygons, &table, width, 0..height, gradients, Vec::new())
 }
 
 /// The visible surface on rows `rows` of the grid whose edge table is `table`: one
 /// band of a frame. `uv_gradients` is the frame's (`uv_gradients`), shared by its
-/// bands.
+/// bands. `reuse` is memory to write the samples into (an earlier band's, so that
+/// a frame's bands do not each fault in fresh pages), or an empty vector.
 pub fn rasterize_rows(
     polygons: &[ScreenPolygon],
     table: &EdgeTable,
     width: u32,
     rows: Range<u32>,
     uv_gradients: Arc<[Option<UvGradient>]>,
+    reuse: Vec<Sample>,
 ) -> VisibleSurface {
     let first_row = rows.start;
     let height = rows.len() as u32;
@@ -53,6 +56,7 @@ pub fn rasterize_rows(
         table,
         width,
         rows,
+        reuse,
         Sample::EMPTY,
         |p, depth, a, z| {
             // Affine texture coordinates are stepped as they are, not over z.
@@ -100,6 +104,7 @@ pub fn rasterize_depth(polygons: &[ScreenPolygon], width: u32, height: u32) -> V
         &table,
         width,
         0..height,
+        Vec::new(),
         f32::INFINITY,
         |_, depth, _, _| depth as f32,
     )
@@ -114,30 +119,33 @@ pub fn rasterize_ids(polygons: &[ScreenPolygon], width: u32, height: u32) -> Vec
         &table,
         width,
         0..height,
+        Vec::new(),
         NO_POLYGON,
         |p, _, _, _| p.id,
     )
 }
 
 /// The sweep of rows `rows`, writing `write(polygon, depth, attributes over z, z)` at
-/// each sample where a polygon is visible and `empty` elsewhere; with
-/// `ATTRIBUTES_USED` false the attributes are not stepped (a depth-only pass).
+/// each sample where a polygon is visible and `empty` elsewhere, into `samples`
+/// (resized; its contents are all overwritten); with `ATTRIBUTES_USED` false the
+/// attributes are not stepped (a depth-only pass).
 fn sweep<S: Copy + Send + Sync, W, const ATTRIBUTES_USED: bool>(
     polygons: &[ScreenPolygon],
     table: &EdgeTable,
     width: u32,
     rows: Range<u32>,
+    mut samples: Vec<S>,
     empty: S,
     write: W,
 ) -> Vec<S>
 where
     W: Fn(&ScreenPolygon, f64, &Attributes, f64) -> S + Sync,
 {
-    // Filled in parallel: the first touch of a large buffer costs as much as the sweep.
-    let mut samples: Vec<S> = (0..width as usize * rows.len())
-        .into_par_iter()
-        .map(|_| empty)
-        .collect();
+    let len = width as usize * rows.len();
+    samples.truncate(len);
+    // Grown in parallel: the first touch of a large buffer costs as much as the sweep.
+    let missing = len - samples.len();
+    samples.par_extend(rayon::iter::repeat_n(empty, missing));
     samples
         .par_chunks_mut((width * BAND_ROWS) as usize)
         .enumerate()
@@ -146,7 +154,11 @@ where
             for row in group_rows.chunks_mut(width as usize) {
                 let y = sweep.row as f64 + 0.5;
                 let row_index = sweep.row;
+                // Each sample is written once: a span's, or `empty` between spans.
+                let mut next = 0;
                 sweep.for_each_span(width, |i0, i1, inside, active| {
+                    row[next..i0 as usize].fill(empty);
+                    next = i1 as usize + 1;
                     let span = Span {
                         y,
                         active,
@@ -157,6 +169,7 @@ where
                     };
                     resolve_span::<S, W, ATTRIBUTES_USED>(i0, i1, inside, &span, row)
                 });
+                row[next..].fill(empty);
                 sweep.next_row();
             }
         });

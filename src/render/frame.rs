@@ -62,10 +62,19 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
         rows => rows,
     };
     let mut pixels = Vec::with_capacity(width as usize * height as usize);
+    // The visible-surface buffer, written again by every band.
+    let mut samples = Vec::new();
     for first in (0..height).step_by(band_rows as usize) {
         let last = (first + band_rows).min(height);
         let rows = first * n..last * n;
-        let band = rasterize_rows(&polygons, &table, view.width, rows, gradients.clone());
+        let band = rasterize_rows(
+            &polygons,
+            &table,
+            view.width,
+            rows,
+            gradients.clone(),
+            samples,
+        );
         let mut counts = Vec::with_capacity(frames.len());
         let mut visibility = Visibility::none();
         for frame in &frames {
@@ -82,11 +91,19 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
             .map(|drawn| match drawn {
                 Some((polygons, table)) => {
                     let rows = band.rows();
-                    rasterize_rows(polygons, table, view.width, rows, gradients.clone())
-                        .samples
-                        .iter()
-                        .map(|s| s.color)
-                        .collect()
+                    let no_memory = Vec::new();
+                    rasterize_rows(
+                        polygons,
+                        table,
+                        view.width,
+                        rows,
+                        gradients.clone(),
+                        no_memory,
+                    )
+                    .samples
+                    .iter()
+                    .map(|s| s.color)
+                    .collect()
                 }
                 None => Vec::new(),
             })
@@ -115,6 +132,7 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
         }
         .downsample(n);
         pixels.extend(pixels_of_band.pixels);
+        samples = band.samples;
     }
     Ok(Rendered {
         image: Image {

@@ -33,6 +33,7 @@ pub struct SurfacePoint {
 }
 
 /// Radiance towards the eye due to `light`, ignoring anything in between.
+#[inline]
 pub fn reflected(point: &SurfacePoint, material: &Reflectance, light: &Light) -> Vec3 {
     match light {
         Light::Point(l) => {
@@ -54,6 +55,7 @@ pub fn reflected(point: &SurfacePoint, material: &Reflectance, light: &Light) ->
 }
 
 /// Light from a point source at offset `d` with intensity `intensity`.
+#[inline(always)]
 fn point_contribution(
     point: &SurfacePoint,
     material: &Reflectance,
@@ -71,6 +73,7 @@ fn point_contribution(
     (material.diffuse / PI + specular_brdf(point, material, l)) * irradiance
 }
 
+#[inline(always)]
 fn specular_brdf(point: &SurfacePoint, material: &Reflectance, l: DVec3) -> Vec3 {
     if material.specular == Vec3::ZERO {
         return Vec3::ZERO;

@@ -23,8 +23,10 @@ use super::light_model::{SurfacePoint, reflected};
 use super::textured::{polygon_tangents, textured_point};
 use crate::geometry::lambert_contour::projected_solid_angle;
 use crate::geometry::polygon::centroid;
-use crate::raster::{LightVisibility, View, Visibility, VisiblePart, VisibleSurface};
-use crate::scene::{EnvironmentSource, Light, Polygon, Scene, ShadingMode, Vertex};
+use crate::raster::{LightVisibility, Sample, View, Visibility, VisiblePart, VisibleSurface};
+use crate::scene::{
+    EnvironmentSource, Light, Material, Polygon, Reflectance, Scene, ShadingMode, Vertex,
+};
 use crate::texture::environment::EnvironmentMap;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
@@ -33,17 +35,44 @@ use std::sync::Arc;
 /// In Williams's post-pass, what a shadowed pixel keeps of a light's radiance.
 pub const POST_PASS_SHADE: f32 = 0.25;
 
+/// Samples shaded one after the other by one thread: enough to make the parallel
+/// split's cost vanish, few enough to share a band between both cores evenly.
+const SAMPLES_PER_TASK: usize = 4096;
+
+impl PolygonLook<'_> {
+    /// Phong-shaded, untextured, without environment: the common case, shaded in
+    /// a loop of its own.
+    fn plain_phong(&self) -> bool {
+        self.mode == ShadingMode::Phong && !self.textured && self.material.environment.is_none()
+    }
+}
+
+/// What shading reads of a polygon at each of its samples, looked up once a frame
+/// (the scene reaches them through the polygon's object and material).
+struct PolygonLook<'a> {
+    material: &'a Material,
+    /// The material's reflectance, for untextured materials.
+    reflectance: Reflectance,
+    textured: bool,
+    mode: ShadingMode,
+    /// The geometric normal, which tells the front from the back.
+    normal: DVec3,
+}
+
 /// What shading needs of one frame, computed once for all its bands.
 pub struct FrameShading<'a> {
     scene: &'a Scene,
     view: &'a View,
-    /// Which lights this pass adds (an integrator may light with the others itself).
-    direct: Vec<bool>,
     /// Per flat-shaded polygon, its radiance from each light.
     flat: Vec<Option<Vec<Vec3>>>,
     tangents: Vec<Option<Vec<[DVec3; 2]>>>,
     /// Per scene environment, its map (`None`: a capture nobody has made).
     environments: Vec<Option<Arc<EnvironmentMap>>>,
+    /// Per polygon, its material, shading mode and normal.
+    looks: Vec<PolygonLook<'a>>,
+    /// The lights this pass adds, in the scene's order (an integrator may light with
+    /// the others itself).
+    added: Vec<usize>,
 }
 
 impl<'a> FrameShading<'a> {
@@ -72,13 +101,24 @@ impl<'a> FrameShading<'a> {
                 EnvironmentSource::Capture(_) => None,
             })
             .collect();
+        let looks = (0..scene.polygons.len())
+            .map(|id| PolygonLook {
+                material: scene.material_of(id),
+                reflectance: scene.material_of(id).reflectance(),
+                textured: scene.material_of(id).is_textured(),
+                mode: scene.shading_of(id),
+                normal: scene.polygons[id].normal,
+            })
+            .collect();
+        let added = (0..lights).filter(|&l| direct[l]).collect();
         FrameShading {
             scene,
             view,
-            direct,
             flat,
             tangents: polygon_tangents(scene),
             environments,
+            looks,
+            added,
         }
     }
 
@@ -174,30 +214,113 @@ impl<'a> FrameShading<'a> {
         visibility: &Visibility,
         gouraud: &[Vec<Vec3>],
     ) -> Vec<Vec3> {
-        let scene = self.scene;
-        (0..band.samples.len())
-            .into_par_iter()
-            .map(|k| {
-                let s = &band.samples[k];
-                if s.is_empty() {
-                    return self.background(band, k);
+        let mut radiance = vec![Vec3::ZERO; band.samples.len()];
+        radiance
+            .par_chunks_mut(SAMPLES_PER_TASK)
+            .enumerate()
+            .for_each(|(task, chunk)| {
+                let first = task * SAMPLES_PER_TASK;
+                let samples = &band.samples[first..first + chunk.len()];
+                // Runs of one polygon: what it fixes is looked up once per run.
+                let mut done = 0;
+                for run in samples.chunk_by(|a, b| a.polygon == b.polygon) {
+                    let out = &mut chunk[done..done + run.len()];
+                    let k = first + done;
+                    match self.looks.get(run[0].polygon as usize) {
+                        Some(look) if look.plain_phong() => {
+                            self.shade_plain_phong(band, k, run, look, out, visibility)
+                        }
+                        _ => {
+                            for (i, r) in out.iter_mut().enumerate() {
+                                *r = self.shade_sample(band, k + i, visibility, gouraud);
+                            }
+                        }
+                    }
+                    done += run.len();
                 }
-                let material = scene.material_of(s.polygon as usize);
-                let emitted = if self.front(band, k) {
-                    material.emission
-                } else {
-                    Vec3::ZERO
-                };
-                emitted + self.lit(band, k, visibility, gouraud) + self.environment(band, k)
-            })
-            .collect()
+            });
+        radiance
+    }
+
+    /// `shade_sample` over `run`, samples `first..` of one polygon, Phong-shaded,
+    /// untextured and without environment (`out`: their radiance).
+    fn shade_plain_phong(
+        &self,
+        band: &VisibleSurface,
+        first: usize,
+        run: &[Sample],
+        look: &PolygonLook,
+        out: &mut [Vec3],
+        visibility: &Visibility,
+    ) {
+        for (i, (s, r)) in run.iter().zip(out).enumerate() {
+            let to_eye = self.view.eye - s.position;
+            let front = look.normal.dot(to_eye) > 0.0;
+            let emitted = if front {
+                look.material.emission
+            } else {
+                Vec3::ZERO
+            };
+            let point = surface_point(s, s.normal.as_dvec3(), to_eye, front);
+            let lit = self.phong(&point, &look.reflectance, band, first + i, visibility);
+            // The environment's share is zero; adding it keeps the sum's rounding.
+            *r = emitted + lit + Vec3::ZERO;
+        }
+    }
+
+    /// The light model at `point` for every light this pass adds, each weighted by
+    /// its visibility at sample `k`.
+    #[inline(always)]
+    fn phong(
+        &self,
+        point: &SurfacePoint,
+        reflectance: &Reflectance,
+        band: &VisibleSurface,
+        k: usize,
+        visibility: &Visibility,
+    ) -> Vec3 {
+        let mut lit = Vec3::ZERO;
+        for &l in &self.added {
+            let light = &self.scene.lights[l];
+            lit += reflected(point, reflectance, light) * self.weight(band, k, l, visibility);
+        }
+        lit
+    }
+
+    /// The radiance of sample `k`: emission, every light this pass adds, and the
+    /// environment.
+    fn shade_sample(
+        &self,
+        band: &VisibleSurface,
+        k: usize,
+        visibility: &Visibility,
+        gouraud: &[Vec<Vec3>],
+    ) -> Vec3 {
+        let s = &band.samples[k];
+        if s.is_empty() {
+            return self.background(band, k);
+        }
+        let look = &self.looks[s.polygon as usize];
+        let to_eye = self.view.eye - s.position;
+        let front = look.normal.dot(to_eye) > 0.0;
+        let emitted = if front {
+            look.material.emission
+        } else {
+            Vec3::ZERO
+        };
+        let environment = if look.material.environment.is_some() {
+            self.environment(band, k)
+        } else {
+            Vec3::ZERO
+        };
+        emitted + self.lit_from(band, k, look, to_eye, front, visibility, gouraud) + environment
     }
 
     /// Whether sample `k` shows the front of its polygon.
     pub fn front(&self, band: &VisibleSurface, k: usize) -> bool {
         let s = &band.samples[k];
         let to_eye = self.view.eye - s.position;
-        self.scene.polygons[s.polygon as usize].normal.dot(to_eye) > 0.0
+        self.looks[s.polygon as usize].normal.dot(to_eye) > 0.0
     }
 
     /// The radiance the lights this pass adds reflect towards the eye at sample `k`,
@@ -209,20 +332,36 @@ impl<'a> FrameShading<'a> {
         visibility: &Visibility,
         gouraud: &[Vec<Vec3>],
     ) -> Vec3 {
+        let s = &band.samples[k];
+        let look = &self.looks[s.polygon as usize];
+        let to_eye = self.view.eye - s.position;
+        let front = look.normal.dot(to_eye) > 0.0;
+        self.lit_from(band, k, look, to_eye, front, visibility, gouraud)
+    }
+
+    /// `lit` at a sample whose polygon, unnormalised direction to the eye and side
+    /// are known.
+    #[allow(clippy::too_many_arguments)]
+    fn lit_from(
+        &self,
+        band: &VisibleSurface,
+        k: usize,
+        look: &PolygonLook,
+        to_eye: DVec3,
+        front: bool,
+        visibility: &Visibility,
+        gouraud: &[Vec<Vec3>],
+    ) -> Vec3 {
         let scene = self.scene;
         let s = &band.samples[k];
-        let id = s.polygon as usize;
         let weight = |l: usize| self.weight(band, k, l, visibility);
-        let lights = 0..scene.lights.len();
-        match scene.shading_of(id) {
+        let added = self.added.iter().copied();
+        match look.mode {
             ShadingMode::Flat => {
-                let flat = self.flat[id]
+                let flat = self.flat[s.polygon as usize]
                     .as_ref()
                     .expect("flat radiance of a flat polygon");
-                lights
-                    .filter(|&l| self.direct[l])
-                    .map(|l| flat[l] * weight(l))
-                    .sum()
+                added.map(|l| flat[l] * weight(l)).sum()
             }
             // One light, or none shadowed: the interpolated total.
             ShadingMode::Gouraud if gouraud.is_empty() => {
@@ -233,27 +372,15 @@ impl<'a> FrameShading<'a> {
                         weight(0)
                     }
             }
-            ShadingMode::Gouraud => lights
-                .filter(|&l| self.direct[l])
-                .map(|l| gouraud[l][k] * weight(l))
-                .sum(),
+            ShadingMode::Gouraud => added.map(|l| gouraud[l][k] * weight(l)).sum(),
             ShadingMode::Phong => {
-                let material = scene.material_of(id);
-                let (reflectance, n) = if material.is_textured() {
+                let (reflectance, n) = if look.textured {
                     textured_point(scene, self.view.eye, band, k, &self.tangents)
                 } else {
-                    (material.reflectance(), s.normal.as_dvec3())
+                    (look.reflectance, s.normal.as_dvec3())
                 };
-                let to_eye = (self.view.eye - s.position).normalize();
-                let point = SurfacePoint {
-                    position: s.position,
-                    normal: if self.front(band, k) { n } else { -n },
-                    to_eye,
-                };
-                lights
-                    .filter(|&l| self.direct[l])
-                    .map(|l| reflected(&point, &reflectance, &scene.lights[l]) * weight(l))
-                    .sum()
+                let point = surface_point(s, n, to_eye, front);
+                self.phong(&point, &reflectance, band, k, visibility)
             }
         }
     }
@@ -274,6 +401,7 @@ impl<'a> FrameShading<'a> {
 
     /// Light `l`'s weight at sample `k`: its visibility, or Williams's post-pass
     /// darkening.
+    #[inline(always)]
     fn weight(&self, band: &VisibleSurface, k: usize, l: usize, visibility: &Visibility) -> f32 {
         let v = match visibility.of(l) {
             None => return 1.0,
@@ -311,6 +439,17 @@ impl<'a> FrameShading<'a> {
             .map(|(contour, sign)| sign * projected_solid_angle(s.position, n, contour))
             .sum();
         (seen / whole).clamp(0.0, 1.0) as f32
+    }
+}
+
+/// The point sample `s` shows, with shading normal `n` turned to the eye's side and
+/// the unit direction to the eye (`to_eye` unnormalised).
+#[inline(always)]
+fn surface_point(s: &Sample, n: DVec3, to_eye: DVec3, front: bool) -> SurfacePoint {
+    SurfacePoint {
+        position: s.position,
+        normal: if front { n } else { -n },
+        to_eye: to_eye.normalize(),
     }
 }
 
