@@ -33,7 +33,7 @@ pub struct SurfacePoint {
 }
 
 /// Radiance towards the eye due to `light`, ignoring anything in between.
-#[inline]
+#[inline(always)]
 pub fn reflected(point: &SurfacePoint, material: &Reflectance, light: &Light) -> Vec3 {
     match light {
         Light::Point(l) => {
