@@ -171,6 +171,56 @@ fn lists_the_catalogue() {
     );
 }
 
+/// `lumiere bench` times what it is asked to, row by row, with rates that agree
+/// with its own times (a row's samples over its milliseconds), and names a method
+/// that cannot light the scene instead of timing it.
+#[test]
+fn bench_reports_times_and_rates_per_method() {
+    let dir = workspace(&[]);
+    let run = lumiere(
+        &[
+            "bench",
+            "--scenes",
+            "cornell-box-point,cornell-box",
+            "--shadows",
+            "none,scanline",
+            "--sizes",
+            "64",
+            "--supersample",
+            "1,2",
+            "--runs",
+            "1",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let rows: Vec<Vec<&str>> = run
+        .stdout
+        .lines()
+        .filter(|l| l.starts_with("cornell-box-point "))
+        .map(|l| l.split_whitespace().collect())
+        .collect();
+    assert_eq!(rows.len(), 4, "{}", run.stdout);
+    for row in &rows {
+        let n: f64 = row[3].split('x').next().unwrap().parse().unwrap();
+        let (ms, rate): (f64, f64) = (row[4].parse().unwrap(), row[5].parse().unwrap());
+        let sweep: f64 = row[6].parse().unwrap();
+        // Milliseconds are printed to 0.01, rates to 0.1.
+        let expected = (64.0 * n).powi(2) / (ms / 1e3) / 1e6;
+        let rounding = expected * 0.006 / ms + 0.06;
+        assert!((rate - expected).abs() <= rounding, "{row:?}");
+        assert!(sweep > 0.0, "{row:?}");
+    }
+    assert!(
+        run.stdout
+            .lines()
+            .any(|l| l.starts_with("cornell-box ")
+                && l.contains("refused: shadow method `scanline`")),
+        "{}",
+        run.stdout
+    );
+}
+
 #[test]
 fn lists_the_catalogue_by_topic_with_summaries() {
     let dir = workspace(&[]);

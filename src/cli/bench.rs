@@ -7,7 +7,8 @@ use lumiere::texture::Filter;
 use lumiere::{load_scene, raster, render};
 
 /// Time whole renders (median of several runs) per scene, variant (shadow method or
-/// texture filter) and size, and the scan-line pass's fill rate.
+/// texture filter) and size, in milliseconds and million samples per second, and
+/// the scan-line visible-surface pass's own rate.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Catalogue ids or scene files to time.
@@ -50,13 +51,14 @@ pub fn run(args: Args) -> Result<()> {
         return super::bench_radiosity::run(&args.scenes[0], &args.radiosity_elements, runs);
     }
     outln!(
-        "{:<26} {:<22} {:>10} {:>8} {:>12} {:>14}",
+        "{:<26} {:<22} {:>10} {:>8} {:>12} {:>16} {:>16}",
         "scene",
         "variant",
         "size",
         "samples",
         "render (ms)",
-        "fill (Mpix/s)"
+        "render (Ms/s)",
+        "sweep (Ms/s)"
     )?;
     for scene_name in &args.scenes {
         for (label, variant) in variants(&args, scene_name)? {
@@ -82,15 +84,17 @@ pub fn run(args: Args) -> Result<()> {
                 let full = median(args.runs, || {
                     let _ = std::hint::black_box(render::render(&scene));
                 });
-                let fill = fill_rate(&scene, args.runs);
+                let grid = (size as f64 * samples as f64).powi(2);
+                let sweep = sweep_rate(&scene, args.runs);
                 outln!(
-                    "{:<26} {:<22} {:>10} {:>8} {:>12.2} {:>14.1}",
+                    "{:<26} {:<22} {:>10} {:>8} {:>12.2} {:>16.1} {:>16.1}",
                     scene_name,
                     label,
                     format!("{size}x{size}"),
                     format!("{samples}x{samples}"),
                     full.as_secs_f64() * 1e3,
-                    fill
+                    grid / full.as_secs_f64() / 1e6,
+                    sweep
                 )?;
             }
         }
@@ -136,12 +140,29 @@ fn variants(args: &Args, scene_name: &str) -> Result<Vec<(String, Vec<String>)>>
     Ok(variants)
 }
 
-/// Mpixels per second of the visible-surface pass alone (polygons prepared once).
-fn fill_rate(scene: &lumiere::Scene, runs: usize) -> f64 {
-    let view = lumiere::raster::sample_view(scene);
-    let polygons = lumiere::raster::screen_polygons(scene, &view);
+/// Million samples per second of the visible-surface pass alone, swept in the
+/// frame's bands into one reused buffer as a frame does (polygons prepared once).
+fn sweep_rate(scene: &lumiere::Scene, runs: usize) -> f64 {
+    let view = raster::sample_view(scene);
+    let polygons = raster::screen_polygons(scene, &view);
+    let table = raster::EdgeTable::build(&polygons, view.height);
+    let gradients = raster::uv_gradients(&polygons);
+    let band = render::band_rows(scene) * scene.render.supersample;
+    let mut memory = Vec::new();
     let sweep = median(runs, || {
-        std::hint::black_box(raster::rasterize(&polygons, view.width, view.height));
+        for first in (0..view.height).step_by(band as usize) {
+            let rows = first..(first + band).min(view.height);
+            let gradients = gradients.clone();
+            let swept = raster::rasterize_rows(
+                &polygons,
+                &table,
+                view.width,
+                rows,
+                gradients,
+                std::mem::take(&mut memory),
+            );
+            memory = std::hint::black_box(swept).samples;
+        }
     });
-    (view.width * view.height) as f64 / sweep.as_secs_f64() / 1e6
+    (view.width as f64 * view.height as f64) / sweep.as_secs_f64() / 1e6
 }

@@ -18,6 +18,7 @@ pub(crate) mod ray_traced;
 mod renderer;
 
 pub use buffers::{BufferInfo, available_buffers};
+pub use frame::band_rows;
 pub use integrator::Integrator;
 pub use renderer::{EnvironmentMaps, Prepasses, Rendered, Renderer};
 
