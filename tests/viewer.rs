@@ -44,8 +44,12 @@ impl Display {
     fn start() -> Display {
         installed();
         // Xvfb chooses a free display number and writes it on its standard output.
+        // Without -noreset it resets whenever its last client leaves, and refuses
+        // connections meanwhile: the viewer, starting while xdotool came and went,
+        // now and then could not open the display.
         let mut server = Command::new("Xvfb")
             .args([
+                "-noreset",
                 "-displayfd",
                 "1",
                 "-screen",
@@ -187,6 +191,12 @@ fn open(display: &Display, args: &[&str], title: &str) -> (Child, String) {
         std::thread::sleep(Duration::from_millis(50));
     };
     display.xdotool(&["windowfocus", "--sync", &window]);
+    // A key sent before the first frame is shown can be lost (the HUD key was,
+    // now and then): the window is handed over once it shows a picture.
+    while display.screenshot(&window).iter().all(|&c| c == 0) {
+        assert!(Instant::now() < deadline, "no picture appeared");
+        std::thread::sleep(Duration::from_millis(50));
+    }
     (viewer, window)
 }
 
@@ -286,36 +296,38 @@ fn the_viewer_shows_what_render_makes_and_follows_keys_and_mouse() {
 fn progressive_radiosity_shows_its_intermediate_states_and_ends_as_render_does() {
     let display = Display::start();
     let dir = tempfile::tempdir().unwrap();
-    let (viewer, window) = open(
-        &display,
-        &["radiosity-shooting"],
-        "lumiere: radiosity-shooting",
-    );
+    // Hemi-cubes of 256 (the entry's are 128) make the solve last longer (1.5 s
+    // rather than 0.9 s alone), for screenshots to catch its states on a busy
+    // machine.
+    let scene = ["radiosity-shooting", "--set", "radiosity.resolution=256"];
+    let (viewer, window) = open(&display, &scene, "lumiere: radiosity-shooting");
     display.xdotool(&["key", "h"]);
-    // Shooting hands its state over as it goes: the picture changes several times
-    // before it settles.
+    // Shooting hands its state over as it goes (every 150 ms): the picture
+    // changes several times, then stays. Every picture that differs from the one
+    // before is kept; three seconds without a change is the end.
     let mut states = vec![display.screenshot(&window)];
+    let mut changed = Instant::now();
     let deadline = Instant::now() + Duration::from_secs(60);
-    loop {
+    while changed.elapsed() < Duration::from_secs(3) {
         assert!(Instant::now() < deadline, "the solve never ended");
-        std::thread::sleep(Duration::from_millis(100));
+        std::thread::sleep(Duration::from_millis(50));
         let now = display.screenshot(&window);
         if now != *states.last().unwrap() {
             states.push(now);
-            continue;
-        }
-        // Unchanged for a while: the solve has ended.
-        std::thread::sleep(Duration::from_millis(1500));
-        if display.screenshot(&window) == now {
-            break;
+            changed = Instant::now();
         }
     }
     assert!(states.len() >= 4, "{} states seen", states.len());
-    let last = states.last().unwrap();
-    assert_eq!(
-        differing(last, &render(dir.path(), &["radiosity-shooting"])),
-        0
-    );
+    let expected = render(dir.path(), &scene);
+    let mut last = states.pop().unwrap();
+    // On a loaded machine the h pressed at the start is now and then lost (the
+    // overlay, many lines on a small window, then darkens nearly all of it): it
+    // is pressed again, once, and the picture must then be render's.
+    if differing(&last, &expected) != 0 {
+        display.xdotool(&["key", "h"]);
+        last = display.settled_after(&window, &last);
+    }
+    assert_eq!(differing(&last, &expected), 0);
     quit(&display, viewer);
 }
 
