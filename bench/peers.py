@@ -162,12 +162,24 @@ shape = "quad"
 material = "grey"
 transform = [{{ scale = 10.0 }}]
 
-[[objects]]
-shape = "sphere"
-material = "grey"
-resolution = {resolution}
-transform = [{{ translate = [0.0, 1.0, 0.0] }}]
+{spheres}
 {lights}"""
+
+# The scene format tessellates a sphere at most 1,024 ways: past half a million
+# polygons the count is split between spheres side by side.
+MOST_PER_SPHERE = 500_000
+
+
+def spheres(polygons):
+    """Tessellated spheres making about `polygons` polygons over the ground."""
+    count = math.ceil(polygons / MOST_PER_SPHERE)
+    resolution = round(math.sqrt(2 * polygons / count))
+    text = ""
+    for k in range(count):
+        x = 2.2 * (k - (count - 1) / 2)
+        text += (f"\n[[objects]]\nshape = \"sphere\"\nmaterial = \"grey\"\nresolution = {resolution}\n"
+                 f"transform = [{{ translate = [{x:.2f}, 1.0, 0.0] }}]\n")
+    return text
 
 
 def lights(n):
@@ -220,7 +232,7 @@ def main():
         def command(n, m=m):
             path = os.path.join(work, f"sphere-{n}.toml")
             with open(path, "w") as f:
-                f.write(SPHERE.format(resolution=round(math.sqrt(2 * n)), lights=lights(1)))
+                f.write(SPHERE.format(spheres=spheres(n), lights=lights(1)))
             return bench.lumiere("render", path, "--shadows", m, "-o", "g.pfm")
         growth.append(("polygons", m, *bench.growth(m, command, counts)[1:], counts))
     numbers = [1, 2, 4, 8]
@@ -228,7 +240,7 @@ def main():
         def command(n, m=m):
             path = os.path.join(work, f"lights-{n}.toml")
             with open(path, "w") as f:
-                f.write(SPHERE.format(resolution=100, lights=lights(n)))
+                f.write(SPHERE.format(spheres=spheres(5_000), lights=lights(n)))
             return bench.lumiere("render", path, "--shadows", m, "-o", "g.pfm")
         growth.append(("lights", m, *bench.growth(m, command, numbers)[1:], numbers))
 

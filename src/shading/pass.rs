@@ -300,9 +300,7 @@ impl<'a> FrameShading<'a> {
         if s.is_empty() {
             return self.background(band, k);
         }
-        let look = &self.looks[s.polygon as usize];
-        let to_eye = self.view.eye - s.position;
-        let front = look.normal.dot(to_eye) > 0.0;
+        let (look, to_eye, front) = self.seen(s);
         let emitted = if front {
             look.material.emission
         } else {
@@ -318,9 +316,15 @@ impl<'a> FrameShading<'a> {
 
     /// Whether sample `k` shows the front of its polygon.
     pub fn front(&self, band: &VisibleSurface, k: usize) -> bool {
-        let s = &band.samples[k];
+        self.seen(&band.samples[k]).2
+    }
+
+    /// The polygon sample `s` shows, the direction from it to the eye (not
+    /// normalised), and whether it is the polygon's front.
+    fn seen(&self, s: &Sample) -> (&PolygonLook<'a>, DVec3, bool) {
+        let look = &self.looks[s.polygon as usize];
         let to_eye = self.view.eye - s.position;
-        self.looks[s.polygon as usize].normal.dot(to_eye) > 0.0
+        (look, to_eye, look.normal.dot(to_eye) > 0.0)
     }
 
     /// The radiance the lights this pass adds reflect towards the eye at sample `k`,
@@ -332,10 +336,7 @@ impl<'a> FrameShading<'a> {
         visibility: &Visibility,
         gouraud: &[Vec<Vec3>],
     ) -> Vec3 {
-        let s = &band.samples[k];
-        let look = &self.looks[s.polygon as usize];
-        let to_eye = self.view.eye - s.position;
-        let front = look.normal.dot(to_eye) > 0.0;
+        let (look, to_eye, front) = self.seen(&band.samples[k]);
         self.lit_from(band, k, look, to_eye, front, visibility, gouraud)
     }
 
