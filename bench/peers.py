@@ -8,6 +8,7 @@ import math
 import os
 import platform
 import re
+import signal
 import statistics
 import subprocess
 import sys
@@ -31,10 +32,17 @@ def run(command, cwd, limit=None):
     """Wall time (s) and peak memory (MB) of a whole process; None past `limit`."""
     start = time.perf_counter()
     timed = ["/usr/bin/time", "-f", "%M"] + command
+    # Its own process group, so that a run stopped at `limit` is stopped whole:
+    # killing /usr/bin/time alone left the renderer running beside later runs.
+    process = subprocess.Popen(timed, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               text=True, start_new_session=True)
     try:
-        result = subprocess.run(timed, cwd=cwd, capture_output=True, text=True, timeout=limit)
+        _, stderr = process.communicate(timeout=limit)
     except subprocess.TimeoutExpired:
+        os.killpg(process.pid, signal.SIGKILL)
+        process.communicate()
         return None
+    result = subprocess.CompletedProcess(timed, process.returncode, "", stderr)
     wall = time.perf_counter() - start
     if result.returncode != 0:
         sys.exit(f"{' '.join(command)} failed:\n{result.stderr}")
