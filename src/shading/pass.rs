@@ -39,24 +39,32 @@ pub const POST_PASS_SHADE: f32 = 0.25;
 /// split's cost vanish, few enough to share a band between both cores evenly.
 const SAMPLES_PER_TASK: usize = 4096;
 
-impl PolygonLook<'_> {
-    /// Phong-shaded, untextured, without environment: the common case, shaded in
-    /// a loop of its own.
-    fn plain_phong(&self) -> bool {
-        self.mode == ShadingMode::Phong && !self.textured && self.material.environment.is_none()
-    }
-}
-
 /// What shading reads of a polygon at each of its samples, looked up once a frame
 /// (the scene reaches them through the polygon's object and material).
 struct PolygonLook<'a> {
     material: &'a Material,
-    /// The material's reflectance, for untextured materials.
-    reflectance: Reflectance,
-    textured: bool,
     mode: ShadingMode,
     /// The geometric normal, which tells the front from the back.
     normal: DVec3,
+}
+
+impl PolygonLook<'_> {
+    /// Phong-shaded, untextured, without environment: the common case, shaded in
+    /// a loop of its own.
+    fn plain_phong(&self) -> bool {
+        self.mode == ShadingMode::Phong
+            && !self.material.is_textured()
+            && self.material.environment.is_none()
+    }
+
+    /// What the polygon emits towards the eye: its front alone shows emission.
+    fn emitted(&self, front: bool) -> Vec3 {
+        if front {
+            self.material.emission
+        } else {
+            Vec3::ZERO
+        }
+    }
 }
 
 /// What shading needs of one frame, computed once for all its bands.
@@ -104,8 +112,6 @@ impl<'a> FrameShading<'a> {
         let looks = (0..scene.polygons.len())
             .map(|id| PolygonLook {
                 material: scene.material_of(id),
-                reflectance: scene.material_of(id).reflectance(),
-                textured: scene.material_of(id).is_textured(),
                 mode: scene.shading_of(id),
                 normal: scene.polygons[id].normal,
             })
@@ -253,18 +259,14 @@ impl<'a> FrameShading<'a> {
         out: &mut [Vec3],
         visibility: &Visibility,
     ) {
+        let reflectance = look.material.reflectance();
         for (i, (s, r)) in run.iter().zip(out).enumerate() {
             let to_eye = self.view.eye - s.position;
             let front = look.normal.dot(to_eye) > 0.0;
-            let emitted = if front {
-                look.material.emission
-            } else {
-                Vec3::ZERO
-            };
             let point = surface_point(s, s.normal.as_dvec3(), to_eye, front);
-            let lit = self.phong(&point, &look.reflectance, band, first + i, visibility);
+            let lit = self.phong(&point, &reflectance, band, first + i, visibility);
             // The environment's share is zero; adding it keeps the sum's rounding.
-            *r = emitted + lit + Vec3::ZERO;
+            *r = look.emitted(front) + lit + Vec3::ZERO;
         }
     }
 
@@ -301,17 +303,13 @@ impl<'a> FrameShading<'a> {
             return self.background(band, k);
         }
         let (look, to_eye, front) = self.seen(s);
-        let emitted = if front {
-            look.material.emission
-        } else {
-            Vec3::ZERO
-        };
         let environment = if look.material.environment.is_some() {
             self.environment(band, k)
         } else {
             Vec3::ZERO
         };
-        emitted + self.lit_from(band, k, look, to_eye, front, visibility, gouraud) + environment
+        let lit = self.lit_from(band, k, look, to_eye, front, visibility, gouraud);
+        look.emitted(front) + lit + environment
     }
 
     /// Whether sample `k` shows the front of its polygon.
@@ -375,10 +373,10 @@ impl<'a> FrameShading<'a> {
             }
             ShadingMode::Gouraud => added.map(|l| gouraud[l][k] * weight(l)).sum(),
             ShadingMode::Phong => {
-                let (reflectance, n) = if look.textured {
+                let (reflectance, n) = if look.material.is_textured() {
                     textured_point(scene, self.view.eye, band, k, &self.tangents)
                 } else {
-                    (look.reflectance, s.normal.as_dvec3())
+                    (look.material.reflectance(), s.normal.as_dvec3())
                 };
                 let point = surface_point(s, n, to_eye, front);
                 self.phong(&point, &reflectance, band, k, visibility)
