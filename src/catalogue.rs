@@ -3,9 +3,9 @@
 //! saying what the entry shows and the size its golden image is rendered at. An
 //! entry may `extends` another: its tables are merged over the other's, key by key.
 
+use crate::error::{Error, Result};
 use crate::scene::resources::Embedded;
 use crate::scene::tables;
-use crate::{Error, Result};
 use include_dir::{Dir, include_dir};
 use serde::{Deserialize, Serialize};
 

@@ -14,26 +14,19 @@ use std::path::{Path, PathBuf};
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Unsupported {
     pub method: ShadowMethod,
+    /// The method's name, and what it handles ("a hard-shadow method for point and
+    /// spot lights"), as the method declares them.
+    pub name: &'static str,
+    pub handles: &'static str,
     pub light: String,
 }
 
 impl std::fmt::Display for Unsupported {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let handles = match self.method {
-            ShadowMethod::ShadowVolumes | ShadowMethod::StencilShadowVolumes => {
-                "a hard-shadow method for point, spot and distant lights"
-            }
-            ShadowMethod::UmbraPenumbra | ShadowMethod::SoftShadowVolumes => {
-                "a soft-shadow method for polygon lights (and point and spot lights)"
-            }
-            ShadowMethod::JitteredSoftShadows => "a soft-shadow method for sphere lights",
-            _ => "a hard-shadow method for point and spot lights",
-        };
         write!(
             f,
-            "shadow method `{}` cannot shadow {}: it is {handles}; use `ray-cast` (it samples extended lights) or `none`",
-            self.method.name(),
-            self.light
+            "shadow method `{}` cannot shadow {}: it is {}; use `ray-cast` (it samples extended lights) or `none`",
+            self.name, self.light, self.handles
         )
     }
 }
@@ -204,7 +197,7 @@ macro_rules! ensure_valid {
     ($cond:expr, $key:expr, $($message:tt)+) => {
         let holds: bool = $cond;
         if !holds {
-            return Err($crate::Error::invalid($key, format!($($message)+)));
+            return Err($crate::error::Error::invalid($key, format!($($message)+)));
         }
     };
 }
@@ -336,7 +329,7 @@ fn gib(bytes: u64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{load_scene, output, render};
+    use crate::{image_io, load_scene, render};
 
     /// The message and its causes joined by ": ", as the command line prints them.
     fn line(e: &Error) -> String {
@@ -376,7 +369,9 @@ mod tests {
             "{}",
             line(&e)
         );
-        let e = output::load(Path::new("no-such-image.png")).err().unwrap();
+        let e = image_io::load(Path::new("no-such-image.png"))
+            .err()
+            .unwrap();
         assert!(
             matches!(&e, Error::Io { op: FileOp::Read, path, .. } if path == Path::new("no-such-image.png"))
         );
@@ -445,7 +440,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("broken.exr");
         std::fs::write(&path, "not an image").unwrap();
-        let e = output::load(&path).err().unwrap();
+        let e = image_io::load(&path).err().unwrap();
         assert!(matches!(&e, Error::Image { path: Some(p), .. } if *p == path));
         let text = line(&e);
         let cause = text.rsplit(": ").next().unwrap();

@@ -11,8 +11,8 @@ pub mod catalogue;
 mod error;
 pub mod geometry;
 pub mod global;
+pub mod image_io;
 pub mod media;
-pub mod output;
 pub mod radiosity;
 pub mod raster;
 pub mod render;
@@ -26,7 +26,7 @@ use scene::resources::{Directory, Layered};
 use std::path::Path;
 
 pub use error::{Error, FileOp, OverBudget, Result};
-pub use output::Image;
+pub use image_io::Image;
 pub use render::render;
 pub use scene::Scene;
 
@@ -73,10 +73,16 @@ pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
     } else {
         &catalogue
     };
-    let scene = scene::scene_from_table(table, resources).map_err(|e| Error::InScene {
-        spec: spec.to_string(),
-        source: Box::new(e),
-    })?;
+    // The shadow method's own budget, refused before any work.
+    let scene = scene::scene_from_table(table, resources)
+        .and_then(|scene| {
+            (shadow::method(scene.shadows.method).budget)(&scene).map_err(Error::OverBudget)?;
+            Ok(scene)
+        })
+        .map_err(|e| Error::InScene {
+            spec: spec.to_string(),
+            source: Box::new(e),
+        })?;
     refuse_unused_materials(&scene, &added)?;
     Ok(scene)
 }

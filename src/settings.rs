@@ -36,7 +36,10 @@ pub struct RenderSettings {
 }
 
 /// How shadows are computed (`[shadows] method`, `--shadows`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+///
+/// Each method declares what it handles, its name, its buffers, its budget and its
+/// warnings in its own file; `shadow::method` reaches them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Deserialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum ShadowMethod {
@@ -74,24 +77,6 @@ pub enum ShadowMethod {
     JitteredSoftShadows,
 }
 
-impl ShadowMethod {
-    /// The name the scene file and the command line use.
-    pub fn name(self) -> &'static str {
-        match self {
-            ShadowMethod::None => "none",
-            ShadowMethod::RayCast => "ray-cast",
-            ShadowMethod::Scanline => "scanline",
-            ShadowMethod::ShadowPolygons => "shadow-polygons",
-            ShadowMethod::ShadowMap => "shadow-map",
-            ShadowMethod::ShadowVolumes => "shadow-volumes",
-            ShadowMethod::StencilShadowVolumes => "stencil-shadow-volumes",
-            ShadowMethod::UmbraPenumbra => "umbra-penumbra",
-            ShadowMethod::SoftShadowVolumes => "soft-shadow-volumes",
-            ShadowMethod::JitteredSoftShadows => "jittered-soft-shadows",
-        }
-    }
-}
-
 /// How shadows are made (`[shadows]` in the scene file).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShadowSettings {
@@ -119,6 +104,9 @@ pub struct ShadowSettings {
     /// The seed of the stochastic methods' streams (soft shadow volumes' points,
     /// jittered cells).
     pub seed: u64,
+    /// The memory the lights' pre-passes may take, in MiB (a method with a budget,
+    /// the shadow map, refuses settings beyond it before any work).
+    pub max_memory_mb: u64,
 }
 
 /// How a shadow map's depth tests are filtered (`[shadows] map_filter`).
@@ -334,6 +322,26 @@ pub enum GlobalMethod {
     /// Rushmeier & Torrance 1990: pass 1 extended to specular transmission through
     /// thin panes and diffuse transmission through translucent panels.
     RushmeierTorrance,
+}
+
+impl GlobalMethod {
+    /// Whether the method's second pass reads a radiosity solution (the two-pass
+    /// methods do; ray tracing reads none).
+    pub fn reads_radiosity(self) -> bool {
+        match self {
+            GlobalMethod::RayTracing => false,
+            GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance => true,
+        }
+    }
+
+    /// The name the scene file uses.
+    pub fn name(self) -> &'static str {
+        match self {
+            GlobalMethod::RayTracing => "ray-tracing",
+            GlobalMethod::TwoPass => "two-pass",
+            GlobalMethod::RushmeierTorrance => "rushmeier-torrance",
+        }
+    }
 }
 
 /// The four ways light passes between two surfaces (Wallace et al. 1987), each on

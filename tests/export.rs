@@ -5,7 +5,7 @@
 
 mod common;
 
-use lumiere::output;
+use lumiere::image_io;
 use std::path::Path;
 use std::process::Command;
 
@@ -74,7 +74,7 @@ fn povray(pov: &str, exr: &str, size: u32, dir: &Path) {
 }
 
 fn flip(dir: &Path, reference: &str, test: &str) -> f64 {
-    let load = |name: &str| output::load(&dir.join(name)).unwrap();
+    let load = |name: &str| image_io::load(&dir.join(name)).unwrap();
     common::flip::mean(&load(reference), &load(test))
 }
 
@@ -150,7 +150,7 @@ fn every_kind_of_light_exports_to_scenes_both_peers_light_where_lumiere_does() {
         ),
     ];
     let lit = |file: &str| {
-        let image = output::load(&d.join(file)).unwrap();
+        let image = image_io::load(&d.join(file)).unwrap();
         let lit = image
             .pixels
             .iter()

@@ -10,7 +10,7 @@
 mod common;
 
 use common::flip;
-use lumiere::output::{self, Image};
+use lumiere::image_io::{self, Image};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -20,7 +20,7 @@ const REFERENCE: &str = "tests/references/cornell-box-direct-mitsuba.pfm";
 const MAX_FLIP: f64 = 0.01;
 
 fn reference() -> Image {
-    output::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(REFERENCE))
+    image_io::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(REFERENCE))
         .unwrap_or_else(|e| panic!("{}", common::error_line(&e)))
 }
 
@@ -42,7 +42,7 @@ fn render(name: &str, shading: &[&str]) -> (Image, PathBuf) {
         shading.join(" "),
         String::from_utf8_lossy(&run.stderr)
     );
-    let image = output::load(&out).unwrap_or_else(|e| panic!("{}", common::error_line(&e)));
+    let image = image_io::load(&out).unwrap_or_else(|e| panic!("{}", common::error_line(&e)));
     (image, out)
 }
 
@@ -55,7 +55,7 @@ fn check(name: &str, shading: &[&str], bound: f64) -> f64 {
     eprintln!("{name}: FLIP {mean:.5} against Mitsuba (bound {bound})");
     if mean >= bound {
         let map = path.with_extension("flip.png");
-        output::save(&flip::magma(&reference, &image), &map, 1.0).unwrap();
+        image_io::save(&flip::magma(&reference, &image), &map, 1.0).unwrap();
         panic!(
             "{name}: FLIP {mean:.5} against Mitsuba's direct light, bound {bound}; render {}, error map {}",
             path.display(),
@@ -129,7 +129,7 @@ const TWO_PASS_MAX_FLIP: f64 = 0.08;
 /// FLIP of `lumiere render ENTRY --supersample 4` at the held reference's size
 /// against it (`reference`, a path under the crate).
 fn entry_flip(entry: &str, reference: &str, size: u32) -> f64 {
-    let reference = output::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(reference))
+    let reference = image_io::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(reference))
         .unwrap_or_else(|e| panic!("{}", common::error_line(&e)));
     assert_eq!((reference.width, reference.height), (size, size));
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("flip-{entry}.pfm"));
@@ -154,7 +154,7 @@ fn entry_flip(entry: &str, reference: &str, size: u32) -> f64 {
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    let image = output::load(&out).unwrap_or_else(|e| panic!("{}", common::error_line(&e)));
+    let image = image_io::load(&out).unwrap_or_else(|e| panic!("{}", common::error_line(&e)));
     let mean = flip::mean(&reference, &image);
     eprintln!("{entry}: FLIP {mean:.5} against Mitsuba's path tracer");
     mean

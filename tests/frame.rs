@@ -1,9 +1,9 @@
 //! The frame: bands, threads, the renderer's kept work, buffers, per-light weights
 //! and the radiosity integrator's lights.
 
-use lumiere::output::{BufferData, Image};
+use lumiere::image_io::{BufferData, Image};
 use lumiere::raster::NO_POLYGON;
-use lumiere::render::{Prepasses, Renderer, available_buffers, visible_surface};
+use lumiere::render::{Prepasses, Renderer, visible_surface};
 use lumiere::scene::{Light, Scene};
 use lumiere::shadow::ShadowMethod;
 use lumiere::{load_scene, render};
@@ -188,7 +188,8 @@ fn buffers_hold_what_the_passes_computed() {
     ];
     let scene = scene("cornell-box-point", &sets);
     let renderer = Renderer::new(scene.clone());
-    let names: Vec<String> = available_buffers(&renderer)
+    let names: Vec<String> = renderer
+        .available_buffers()
         .unwrap()
         .into_iter()
         .map(|b| b.name)

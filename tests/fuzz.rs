@@ -7,7 +7,7 @@
 //! found). Coverage-guided fuzzing (cargo-fuzz) needs a nightly toolchain; these
 //! harnesses drive the same entry points with proptest's generators instead.
 
-use lumiere::output::{self, Format};
+use lumiere::image_io::{self, Format};
 use lumiere::scene::{scene_from_table, tables};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -185,8 +185,8 @@ proptest! {
     ) {
         let mut bytes = format!("PF\n{width} {height}\n{scale}\n").into_bytes();
         bytes.extend(&body);
-        let _ = output::decode(&bytes, Format::Pfm);
-        let _ = output::decode(&raw, Format::Pfm);
+        let _ = image_io::decode(&bytes, Format::Pfm);
+        let _ = image_io::decode(&raw, Format::Pfm);
     }
 
     /// PNG and EXR decoders: a valid file with bytes flipped, and arbitrary bytes.
@@ -195,15 +195,15 @@ proptest! {
         flips in prop::collection::vec((0usize..4096, any::<u8>()), 0..6),
         raw in prop::collection::vec(any::<u8>(), 0..128),
     ) {
-        let image = output::Image { width: 3, height: 2, pixels: vec![glam::Vec3::new(0.2, 0.5, 1.5); 6] };
+        let image = image_io::Image { width: 3, height: 2, pixels: vec![glam::Vec3::new(0.2, 0.5, 1.5); 6] };
         for format in [Format::Png, Format::Exr] {
-            let mut bytes = output::encode(&image, format, 1.0).unwrap();
+            let mut bytes = image_io::encode(&image, format, 1.0).unwrap();
             for &(at, value) in &flips {
                 let n = bytes.len();
                 bytes[at % n] ^= value;
             }
-            let _ = output::decode(&bytes, format);
-            let _ = output::decode(&raw, format);
+            let _ = image_io::decode(&bytes, format);
+            let _ = image_io::decode(&raw, format);
         }
     }
 }
@@ -255,7 +255,9 @@ fn messages_name_the_real_cause() {
 #[test]
 fn an_exr_declaring_a_huge_block_is_refused_from_its_header() {
     let bytes = include_bytes!("references/fuzz/exr-huge-block.exr");
-    let error = output::decode(bytes, Format::Exr).unwrap_err().to_string();
+    let error = image_io::decode(bytes, Format::Exr)
+        .unwrap_err()
+        .to_string();
     assert!(
         error.contains("larger than 16384 on a side") || error.contains("a block of this image"),
         "{error}"
@@ -267,12 +269,12 @@ fn an_exr_declaring_a_huge_block_is_refused_from_its_header() {
 /// material's diffuse colour, as users of OBJ files expect.
 #[test]
 fn mtl_diffuse_maps_are_loaded() {
-    let image = output::Image {
+    let image = image_io::Image {
         width: 2,
         height: 2,
         pixels: vec![glam::Vec3::new(0.25, 0.5, 1.0); 4],
     };
-    let png = output::encode(&image, Format::Png, 1.0).unwrap();
+    let png = image_io::encode(&image, Format::Png, 1.0).unwrap();
     let mut files = files(OBJ, "newmtl red\nKd 0.6 0.1 0.1\nmap_Kd maps/wood.png\n");
     files.0.insert("maps/wood.png".to_string(), png);
     let scene = scene_from_table(tables::parse(SCENE, "fuzz.toml").unwrap(), &files).unwrap();

@@ -14,7 +14,7 @@
 mod common;
 
 use libtest_mimic::{Arguments, Failed, Trial};
-use lumiere::output::{self, Image};
+use lumiere::image_io::{self, Image};
 use lumiere::{catalogue, load_scene};
 use std::path::{Path, PathBuf};
 
@@ -59,14 +59,15 @@ fn render_entry(id: &str) -> Result<(Image, f32), Failed> {
 fn check(id: &str) -> Result<(), Failed> {
     let (image, exposure) = render_entry(id)?;
     let actual =
-        output::encode(&image, output::Format::Png, exposure).map_err(|e| e.to_string())?;
+        image_io::encode(&image, image_io::Format::Png, exposure).map_err(|e| e.to_string())?;
     let golden = root().join("golden").join(format!("{id}.png"));
     let linear = root().join("golden").join(format!("{id}.exr"));
     let regenerate = format!("LUMIERE_UPDATE_GOLDEN=1 cargo test --release --test golden -- {id}");
     if std::env::var_os("LUMIERE_UPDATE_GOLDEN").is_some() {
-        let exr = output::encode(&image, output::Format::Exr, 1.0).map_err(|e| e.to_string())?;
-        output::write_atomically(&golden, &actual).map_err(|e| e.to_string())?;
-        output::write_atomically(&linear, &exr).map_err(|e| e.to_string())?;
+        let exr =
+            image_io::encode(&image, image_io::Format::Exr, 1.0).map_err(|e| e.to_string())?;
+        image_io::write_atomically(&golden, &actual).map_err(|e| e.to_string())?;
+        image_io::write_atomically(&linear, &exr).map_err(|e| e.to_string())?;
         return Err(format!(
             "{id}: golden rewritten at {}; look at it, then run the tests again",
             golden.display()
@@ -80,8 +81,8 @@ fn check(id: &str) -> Result<(), Failed> {
         )
         .into());
     }
-    let expected = output::load(&golden).map_err(|e| common::error_line(&e))?;
-    let actual = output::load_png_bytes(&actual).map_err(|e| common::error_line(&e))?;
+    let expected = image_io::load(&golden).map_err(|e| common::error_line(&e))?;
+    let actual = image_io::load_png_bytes(&actual).map_err(|e| common::error_line(&e))?;
     if (expected.width, expected.height) != (actual.width, actual.height) {
         return Err(format!(
             "{id}: golden is {}x{}, render is {}x{}; regenerate with `{regenerate}`",
@@ -93,7 +94,7 @@ fn check(id: &str) -> Result<(), Failed> {
     if failing == 0 {
         return check_linear(id, &image, &linear, &regenerate);
     }
-    let comparison = output::compare(&expected, &actual, 1.0).map_err(|e| e.to_string())?;
+    let comparison = image_io::compare(&expected, &actual, 1.0).map_err(|e| e.to_string())?;
     let report = write_failure(id, &expected, &actual);
     Err(format!(
         "{id}: {failing} pixels differ by more than {CHANNEL_TOLERANCE}/255 (max {}/255, rmse {:.5}); see {}; if the change is intended, regenerate with `{regenerate}`",
@@ -113,7 +114,7 @@ fn check_linear(id: &str, image: &Image, path: &Path, regenerate: &str) -> Resul
         )
         .into());
     }
-    let expected = output::load(path).map_err(|e| common::error_line(&e))?;
+    let expected = image_io::load(path).map_err(|e| common::error_line(&e))?;
     if (expected.width, expected.height) != (image.width, image.height) {
         return Err(format!(
             "{id}: linear reference is {}x{}; regenerate with `{regenerate}`",
@@ -167,7 +168,7 @@ fn failing_pixels(a: &Image, b: &Image) -> usize {
         .iter()
         .zip(&b.pixels)
         .filter(|(p, q)| {
-            let (p, q) = (output::to_srgb8(**p, 1.0), output::to_srgb8(**q, 1.0));
+            let (p, q) = (image_io::to_srgb8(**p, 1.0), image_io::to_srgb8(**q, 1.0));
             (0..3).any(|c| p[c].abs_diff(q[c]) > CHANNEL_TOLERANCE)
         })
         .count()
@@ -175,7 +176,7 @@ fn failing_pixels(a: &Image, b: &Image) -> usize {
 
 /// expected | difference | actual, side by side.
 fn write_failure(id: &str, expected: &Image, actual: &Image) -> PathBuf {
-    let diff = output::difference_image(expected, actual, 1.0, 8.0);
+    let diff = image_io::difference_image(expected, actual, 1.0, 8.0);
     let (w, h) = (expected.width, expected.height);
     let mut pixels = Vec::with_capacity((3 * w * h) as usize);
     for y in 0..h as usize {
@@ -191,7 +192,7 @@ fn write_failure(id: &str, expected: &Image, actual: &Image) -> PathBuf {
     let dir = root().join("golden-failures");
     let path = dir.join(format!("{id}.png"));
     let _ = std::fs::create_dir_all(&dir)
-        .and_then(|_| output::save(&sheet, &path, 1.0).map_err(std::io::Error::other));
+        .and_then(|_| image_io::save(&sheet, &path, 1.0).map_err(std::io::Error::other));
     path
 }
 
@@ -236,7 +237,7 @@ fn deterministic() -> Result<(), Failed> {
                 .iter()
                 .map(|id| {
                     let (image, _) = render_entry(id)?;
-                    output::encode(&image, output::Format::Pfm, 1.0)
+                    image_io::encode(&image, image_io::Format::Pfm, 1.0)
                         .map_err(|e| Failed::from(e.to_string()))
                 })
                 .collect()

@@ -1,9 +1,10 @@
-//! The crate's layers, bottom to top: geometry and settings → the errors → output
-//! (images, files) → texture → scene → raster → shadow, shading, radiosity, media
-//! (siblings) → global (ray tracing and the two-pass method's second pass, over
-//! shading's light model and radiosity's solution) → render → catalogue → the command
-//! line. A module names only modules below its
-//! own layer (and its own): read from the sources, every `crate::` path checked.
+//! The crate's layers, bottom to top: geometry and settings → the errors → image_io
+//! (image input and output) → texture → scene → raster → shadow, shading,
+//! radiosity, media (siblings) → global (ray tracing and the two-pass method's
+//! second pass, over shading's light model and radiosity's solution) → render →
+//! catalogue → the command line and the crate root. A module names only modules
+//! below its own layer (and its own): read from the sources, every `crate::` path
+//! checked. Inside a folder, the files import one another without a circle.
 
 use std::path::Path;
 
@@ -11,7 +12,7 @@ fn layer(module: &str) -> Option<u32> {
     Some(match module {
         "geometry" | "settings" => 0,
         "error" => 1,
-        "output" => 2,
+        "image_io" => 2,
         "texture" => 3,
         "scene" => 4,
         "raster" => 5,
@@ -24,12 +25,11 @@ fn layer(module: &str) -> Option<u32> {
     })
 }
 
-/// The module a crate path's first name is: a module, or a re-export of the root.
+/// The module a crate path's first name is. Below the root, code names the module
+/// an item lives in (`crate::error::Result`), never a re-export of the root, so the
+/// root stands at the top of the tree only.
 fn module_of(name: &str) -> &str {
     match name {
-        "Error" | "Result" | "FileOp" => "error",
-        "Image" => "output",
-        "Scene" => "scene",
         "load_scene" => "lib",
         module => module,
     }
@@ -100,4 +100,106 @@ fn no_module_names_a_module_above_it() {
     }
     assert!(checked > 100, "only {checked} crate paths found");
     assert!(violations.is_empty(), "{}", violations.join("\n"));
+}
+
+/// The sibling files `text` names: `super::name` and `crate::folder::name`, in `use`
+/// lines and in code (inside groups too), where `name` is a file of the folder.
+fn siblings_named(text: &str, folder: &str, files: &[String]) -> Vec<String> {
+    let mut named = Vec::new();
+    for prefix in ["super::".to_string(), format!("crate::{folder}::")] {
+        for (i, _) in text.match_indices(&prefix) {
+            let rest = &text[i + prefix.len()..];
+            let names: Vec<String> = match rest.strip_prefix('{') {
+                Some(group) => group[..group.find('}').unwrap_or(group.len())]
+                    .split(',')
+                    .map(|s| s.trim().split("::").next().unwrap_or("").to_string())
+                    .collect(),
+                None => vec![
+                    rest.chars()
+                        .take_while(|c| c.is_alphanumeric() || *c == '_')
+                        .collect(),
+                ],
+            };
+            named.extend(names.into_iter().filter(|n| files.contains(n)));
+        }
+    }
+    named
+}
+
+/// Inside each folder of src/, the files' imports of one another (`super::` and
+/// `crate::folder::` paths; the folder's mod.rs declares them and is left out) form
+/// no circle.
+#[test]
+fn no_folder_has_a_circle_of_files() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut circles = Vec::new();
+    let mut edges_seen = 0;
+    let mut folders = vec![src.clone()];
+    while let Some(dir) = folders.pop() {
+        let mut files: Vec<String> = Vec::new();
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                folders.push(path.clone());
+                files.push(path.file_name().unwrap().to_str().unwrap().to_string());
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let stem = path.file_stem().unwrap().to_str().unwrap();
+                if stem != "mod" && dir != src {
+                    files.push(stem.to_string());
+                }
+            }
+        }
+        if dir == src {
+            continue;
+        }
+        let folder = dir
+            .strip_prefix(&src)
+            .unwrap()
+            .to_str()
+            .unwrap()
+            .replace('/', "::");
+        let mut edges: Vec<(String, String)> = Vec::new();
+        for file in &files {
+            let path = match dir.join(format!("{file}.rs")) {
+                p if p.exists() => p,
+                _ => dir.join(file).join("mod.rs"),
+            };
+            let Ok(text) = std::fs::read_to_string(&path) else {
+                continue;
+            };
+            let text = text.split("#[cfg(test)]").next().unwrap();
+            for other in siblings_named(text, &folder, &files) {
+                if &other != file && !edges.contains(&(file.clone(), other.clone())) {
+                    edges.push((file.clone(), other));
+                }
+            }
+        }
+        edges_seen += edges.len();
+        // A depth-first search for a path back to where it started.
+        for start in &files {
+            let mut stack = vec![(start.clone(), vec![start.clone()])];
+            let mut seen = vec![start.clone()];
+            while let Some((at, path)) = stack.pop() {
+                for (_, next) in edges.iter().filter(|(from, _)| *from == at) {
+                    if next == start {
+                        let mut circle = path.clone();
+                        circle.push(start.clone());
+                        circles.push(format!("src/{folder}: {}", circle.join(" -> ")));
+                    } else if !seen.contains(next) {
+                        seen.push(next.clone());
+                        let mut longer = path.clone();
+                        longer.push(next.clone());
+                        stack.push((next.clone(), longer));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        edges_seen > 50,
+        "only {edges_seen} imports between files found"
+    );
+    circles.sort();
+    circles.dedup();
+    assert!(circles.is_empty(), "{}", circles.join("\n"));
 }

@@ -13,7 +13,7 @@ use lumiere::Scene;
 use lumiere::global::TracedScene;
 use lumiere::global::traced_scene::{Leaving, SurfaceHit};
 use lumiere::global::whitted::{Whitted, reflected_direction, refracted_direction};
-use lumiere::output::BufferData;
+use lumiere::image_io::BufferData;
 use lumiere::raster::View;
 use lumiere::render::Renderer;
 use lumiere::settings::GlobalSettings;
@@ -815,7 +815,7 @@ fn whitted_shadows_equal_ray_cast_shadows() {
             let (origin, direction) = view.ray_through(cx, cy);
             let hit = traced.closest(origin, direction.normalize(), f64::INFINITY, Leaving::Eye);
             let polygon = hit.and_then(|h| h.polygon);
-            let scan = (ids[k] != lumiere::output::NO_ID).then_some(ids[k]);
+            let scan = (ids[k] != lumiere::image_io::NO_ID).then_some(ids[k]);
             if polygon != scan {
                 other_polygon.push((i, j));
                 continue;

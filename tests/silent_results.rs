@@ -1,7 +1,7 @@
 //! Results a user would otherwise get in silence: a black image from a scene with
 //! nothing to see or nothing to light it, an output file that was read-only.
 
-use lumiere::output::{self, Image};
+use lumiere::image_io::{self, Image};
 use lumiere::scene::{scene_from_table, tables};
 
 mod common;
@@ -47,7 +47,7 @@ fn a_read_only_output_is_left_alone() {
         height: 1,
         pixels: vec![glam::Vec3::ONE],
     };
-    let error = output::save(&image, &path, 1.0).expect_err("refused");
+    let error = image_io::save(&image, &path, 1.0).expect_err("refused");
     let line = common::error_line(&error);
     assert!(
         line.contains("read-only") && line.contains("kept.pfm"),

@@ -3,11 +3,11 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lumiere::output::{self, Format};
+use lumiere::image_io::{self, Format};
 use lumiere::texture::Texels;
 
 fuzz_target!(|data: &[u8]| {
-    let _ = output::decode(data, Format::Png);
-    let _ = output::decode(data, Format::Exr);
+    let _ = image_io::decode(data, Format::Png);
+    let _ = image_io::decode(data, Format::Exr);
     let _ = Texels::decode(data);
 });

@@ -2,8 +2,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lumiere::output::{self, Format};
+use lumiere::image_io::{self, Format};
 
 fuzz_target!(|data: &[u8]| {
-    let _ = output::decode(data, Format::Pfm);
+    let _ = image_io::decode(data, Format::Pfm);
 });

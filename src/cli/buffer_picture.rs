@@ -1,12 +1,12 @@
 //! A frame's intermediate buffers as pictures, for the gallery and the viewer.
 
-use lumiere::output::{self, Buffer, BufferData, Image};
+use lumiere::image_io::{self, Buffer, BufferData, Image};
 
 /// A buffer as a picture: ids and counts colour-mapped; visibility and texture
 /// coordinates as they are; normals from [-1, 1]; radiance at the scene's
 /// exposure; other values (depths, positions, levels) stretched over their range.
 pub fn displayed(buffer: &Buffer, exposure: f32) -> Image {
-    let mut image = buffer.to_image(output::Format::Png);
+    let mut image = buffer.to_image(image_io::Format::Png);
     if !matches!(buffer.data, BufferData::Values { .. }) {
         return image;
     }
@@ -49,7 +49,7 @@ pub fn displayed(buffer: &Buffer, exposure: f32) -> Image {
     }
     // Stretched values are shown as grey levels, not as linear radiance.
     for p in &mut image.pixels {
-        *p = p.map(output::srgb_decode);
+        *p = p.map(image_io::srgb_decode);
     }
     image
 }

@@ -2,7 +2,7 @@
 //! thresholds a regression test allows.
 
 use anyhow::{Result, bail};
-use lumiere::output::{self, Comparison};
+use lumiere::image_io::{self, Comparison};
 use std::path::PathBuf;
 
 /// Compare two images (PNG, PFM or EXR): RMSE, PSNR, largest channel difference and the
@@ -58,12 +58,12 @@ pub fn run(args: Args) -> Result<()> {
     {
         bail!("--max-differing {f}: must be a fraction between 0 and 1");
     }
-    let a = output::load(&args.a)?;
-    let b = output::load(&args.b)?;
-    let c = output::compare(&a, &b, args.exposure)?;
+    let a = image_io::load(&args.a)?;
+    let b = image_io::load(&args.b)?;
+    let c = image_io::compare(&a, &b, args.exposure)?;
     if let Some(path) = &args.diff {
-        output::save(
-            &output::difference_image(&a, &b, args.exposure, args.gain),
+        image_io::save(
+            &image_io::difference_image(&a, &b, args.exposure, args.gain),
             path,
             1.0,
         )?;

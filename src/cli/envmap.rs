@@ -3,9 +3,9 @@
 //! converted between layouts.
 
 use anyhow::{Context, Result, bail};
+use lumiere::image_io::{self, Image};
 use lumiere::load_scene;
-use lumiere::output::{self, Image};
-use lumiere::render::capture::capture_cube;
+use lumiere::render::capture_cube;
 use lumiere::scene::{Scene, objects_named};
 use lumiere::settings::Filter;
 use lumiere::texture::Texels;
@@ -63,7 +63,7 @@ pub struct Args {
 const MAX_SIZE: u32 = 4096;
 
 pub fn run(args: Args) -> Result<()> {
-    output::Format::of(&args.output)?;
+    image_io::Format::of(&args.output)?;
     let to = match (args.cube, args.sphere, args.lat_long) {
         (true, _, _) => Layout::Cube,
         (_, true, _) => Layout::Sphere,
@@ -81,7 +81,7 @@ pub fn run(args: Args) -> Result<()> {
             let Some(layout) = args.layout else {
                 bail!("--from needs --layout: how {} is laid out", from.display());
             };
-            let image = output::load(from)?;
+            let image = image_io::load(from)?;
             let texels = Texels {
                 width: image.width,
                 height: image.height,
@@ -117,7 +117,7 @@ pub fn run(args: Args) -> Result<()> {
         height: texels.height,
         pixels: texels.texels,
     };
-    output::save(&image, &args.output, exposure)?;
+    image_io::save(&image, &args.output, exposure)?;
     outln!(
         "wrote {} ({} map, {}x{}) in {:.2} s",
         args.output.display(),

@@ -2,9 +2,9 @@
 
 use anyhow::{Context, Result, bail};
 use lumiere::radiosity::{FormFactorMethod, Solver};
-use lumiere::render::{Renderer, available_buffers};
+use lumiere::render::Renderer;
 use lumiere::shadow::ShadowMethod;
-use lumiere::{catalogue, load_scene, output};
+use lumiere::{catalogue, image_io, load_scene};
 use std::path::PathBuf;
 
 /// Render a catalogue entry (by id) or a scene file (.toml) to PNG, PFM or EXR.
@@ -85,7 +85,7 @@ pub fn run(args: Args) -> Result<()> {
     // Fail on a bad output name before any work is done.
     let aov = args.aov.as_deref();
     if !matches!(aov, Some("all" | "list")) {
-        output::Format::of(&args.output)?;
+        image_io::Format::of(&args.output)?;
     }
     let mut sets = Vec::new();
     if args.test_size {
@@ -114,10 +114,10 @@ pub fn run(args: Args) -> Result<()> {
     let mut renderer = Renderer::new(scene);
     renderer.check()?;
     renderer.set_hemicube_element(args.hemicube_element);
-    let scene = renderer.scene();
-    for warning in &scene.warnings {
+    for warning in renderer.warnings() {
         eprintln!("warning: {warning}");
     }
+    let scene = renderer.scene();
     if !scene.polygons.is_empty() && {
         let view = lumiere::raster::sample_view(scene);
         lumiere::raster::screen_polygons(scene, &view).is_empty()
@@ -126,16 +126,6 @@ pub fn run(args: Args) -> Result<()> {
             "warning: no polygon lies in front of the camera within its field of view (and beyond camera.near = {}): the image shows the background only",
             scene.camera.near
         );
-    }
-    if matches!(
-        scene.shadows.method,
-        ShadowMethod::ShadowVolumes | ShadowMethod::StencilShadowVolumes
-    ) {
-        for name in lumiere::shadow::shadow_volumes::open_objects(scene) {
-            eprintln!(
-                "warning: object `{name}` is not a closed 2-manifold: its shadow volume may leak light"
-            );
-        }
     }
     if let Some(settings) = &radiosity {
         let frames = args.frames.map(|dir| super::radiosity::Frames {
@@ -155,29 +145,30 @@ pub fn run(args: Args) -> Result<()> {
                     "warning: {unbounded} pixels have infinite or undefined radiance (a point light on a surface?); PNG shows them white, PFM and EXR keep them"
                 );
             }
-            Ok(output::save(&image, &args.output, exposure)?)
+            Ok(image_io::save(&image, &args.output, exposure)?)
         }
         Some("list") => {
-            for info in available_buffers(&renderer)? {
+            for info in renderer.available_buffers()? {
                 outln!("{:<28} {}", info.name, info.description)?;
             }
             Ok(())
         }
         Some("all") => {
-            let names: Vec<String> = available_buffers(&renderer)?
+            let names: Vec<String> = renderer
+                .available_buffers()?
                 .into_iter()
                 .map(|b| b.name)
                 .collect();
             let rendered = renderer.render_with_buffers(&names)?;
             let dir = &args.output;
             // All the buffers or none: an earlier run's stay until every one is written.
-            let staged = output::StagedDirectory::create(dir)
+            let staged = image_io::StagedDirectory::create(dir)
                 .with_context(|| format!("cannot create the directory {}", dir.display()))?;
             let mut files = Vec::new();
             for buffer in &rendered.buffers {
                 let format = buffer.natural_format();
                 let file = format!("{}.{}", buffer.name, format.extension());
-                output::save(&buffer.to_image(format), &staged.path(&file), 1.0)?;
+                image_io::save(&buffer.to_image(format), &staged.path(&file), 1.0)?;
                 files.push(file);
             }
             Ok(staged.publish(|name| files.iter().any(|f| f == name))?)
@@ -190,8 +181,8 @@ pub fn run(args: Args) -> Result<()> {
             };
             let rendered = renderer.render_with_buffers(&[name.to_string()])?;
             let buffer = &rendered.buffers[0];
-            let format = output::Format::of(&args.output)?;
-            Ok(output::save(&buffer.to_image(format), &args.output, 1.0)?)
+            let format = image_io::Format::of(&args.output)?;
+            Ok(image_io::save(&buffer.to_image(format), &args.output, 1.0)?)
         }
     }
 }

@@ -3,7 +3,7 @@
 use anyhow::{Context, Result, bail};
 use lumiere::scene::{Light, Scene};
 use lumiere::shadow::shadow_polygon_areas::{ReceiverShadows, receiver_shadows};
-use lumiere::{load_scene, output};
+use lumiere::{image_io, load_scene};
 use std::path::PathBuf;
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Transform};
 
@@ -26,7 +26,7 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<()> {
     if let Some(path) = &args.png
-        && output::Format::of(path)? != output::Format::Png
+        && image_io::Format::of(path)? != image_io::Format::Png
     {
         bail!("{}: the plan is drawn as a .png", path.display());
     }
@@ -34,7 +34,7 @@ pub fn run(args: Args) -> Result<()> {
     let light = first_point_light(&scene)?;
     let receivers = receiver_shadows(&scene, light);
     if let Some(path) = &args.png {
-        output::write_atomically(path, &plan(&receivers)?)?;
+        image_io::write_atomically(path, &plan(&receivers)?)?;
     }
     if args.json {
         let report = serde_json::json!({ "light": light.to_array(), "receivers": receivers });

@@ -28,11 +28,11 @@
 
 use super::local::lights_at;
 use super::traced_scene::{Leaving, TracedScene};
+use crate::error::{Error, Result};
 use crate::radiosity::{Solution, display};
 use crate::scene::ray_queries::{contains, fan_weights};
 use crate::scene::{Polygon, Scene, Vertex};
 use crate::settings::{GlobalMethod, GlobalSettings};
-use crate::{Error, Result};
 use glam::{DVec3, Vec3};
 use std::sync::Arc;
 

@@ -39,7 +39,7 @@
 
 use super::local::{lights_at, reflectance_at};
 use super::traced_scene::{Leaving, SurfaceHit, TracedScene};
-use crate::output::Image;
+use crate::image_io::Image;
 use crate::raster::View;
 use crate::scene::Scene;
 use crate::settings::{GlobalSettings, SpecularWeights};

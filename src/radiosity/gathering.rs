@@ -15,7 +15,7 @@
 
 use super::form_factors::{Estimator, patch_factors};
 use super::mesh::Mesh;
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 use glam::DVec3;
 use std::time::{Duration, Instant};
 

@@ -11,9 +11,9 @@
 //! each other: a crease (wall against floor) is a discontinuity of radiosity, which
 //! averaging across it would smear.
 
+use crate::error::{Error, Result};
 use crate::geometry::polygon::{area, newell_normal};
 use crate::scene::Scene;
-use crate::{Error, Result};
 use glam::{DVec3, Vec3};
 use std::collections::HashMap;
 use std::ops::Range;

@@ -21,9 +21,9 @@ pub mod shooting;
 pub mod subdivision;
 pub mod windows;
 
+use crate::error::{Error, Result};
 use crate::scene::Scene;
 pub use crate::settings::{Division, RadiositySettings as Settings, Solver, Subdivision};
-use crate::{Error, Result};
 pub use display::Display;
 pub use form_factors::{Estimator, FormFactorMethod};
 use glam::Vec3;

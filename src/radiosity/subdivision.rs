@@ -17,7 +17,7 @@ use super::form_factors::Estimator;
 use super::mesh::{Mesh, MeshCounts};
 use super::receivers::Receivers;
 use crate::error::OverBudget;
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 use glam::DVec3;
 use rayon::prelude::*;
 

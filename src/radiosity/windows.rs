@@ -27,10 +27,10 @@
 use super::hemicube::Hemicube;
 use super::mesh::Mesh;
 use super::receivers::Receivers;
+use crate::error::{Error, Result};
 use crate::geometry::sutherland_hodgman::clip;
 use crate::raster::{NO_POLYGON, ScreenPolygon, View, rasterize_ids};
 use crate::scene::Scene;
-use crate::{Error, Result};
 use glam::DVec3;
 
 /// Item-buffer flag of a receiver seen from behind (its id in the low bits).

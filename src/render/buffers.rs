@@ -4,16 +4,22 @@
 //! (shadow-map faces, hemi-cube item buffers) at their own size.
 
 use super::integrator::Integrator;
-use super::renderer::Renderer;
-use crate::output::{Buffer, BufferData, NO_ID};
+use super::plan::FramePlan;
+use crate::error::{Error, Result};
+use crate::image_io::{Buffer, BufferData, NO_ID};
 use crate::radiosity::hemicube::{BACK, Hemicube};
 use crate::radiosity::receivers::Receivers;
 use crate::raster::{NO_POLYGON, Visibility, VisibleSurface};
-use crate::settings::ShadowMethod;
+use crate::scene::{Light, Scene};
+use crate::settings::MediumMethod;
 use crate::shading::FrameShading;
-use crate::shadow::LightShadows;
-use crate::{Error, Result};
-use std::sync::Arc;
+use crate::shadow::{self, CountBuffer};
+
+/// The buffer a ray-traced frame gives, and what it holds.
+pub const RAYS: (&str, &str) = (
+    "rays",
+    "rays traced per pixel (eye, reflected and refracted; colour-mapped): where Whitted's adaptive subdivision split the pixel, and how deep its trees went",
+);
 
 /// A buffer a scene's frame can give, and what it holds.
 #[derive(Clone, Debug, PartialEq)]
@@ -32,7 +38,8 @@ enum Kind {
     Normal,
     Uv,
     Visibility(usize),
-    Counts(usize, ShadowMethod),
+    /// The count its shadow method declares (`shadow::Method::counts`).
+    Counts(usize, CountBuffer),
     MipLevel,
     EnvironmentLevel,
     Radiosity,
@@ -52,11 +59,7 @@ impl Kind {
             Kind::Normal => "normal".into(),
             Kind::Uv => "uv".into(),
             Kind::Visibility(l) => format!("visibility-{l}"),
-            Kind::Counts(l, method) => match method {
-                ShadowMethod::UmbraPenumbra => format!("umbra-{l}"),
-                ShadowMethod::SoftShadowVolumes => format!("blocked-{l}"),
-                _ => format!("shadow-volume-counts-{l}"),
-            },
+            Kind::Counts(l, counts) => counts.name(l),
             Kind::MipLevel => "mip-level".into(),
             Kind::EnvironmentLevel => "environment-level".into(),
             Kind::Radiosity => "radiosity".into(),
@@ -78,17 +81,7 @@ impl Kind {
             Kind::Visibility(l) => {
                 format!("light {l}'s visibility: 1 lit, 0 shadowed, between partly lit")
             }
-            Kind::Counts(l, method) => match method {
-                ShadowMethod::UmbraPenumbra => format!(
-                    "light {l}'s umbra map: 0 lit, 1 penumbra, 2 umbra (Nishita & Nakamae; colour-mapped)"
-                ),
-                ShadowMethod::SoftShadowVolumes => format!(
-                    "points of light {l} hidden from each visible point (Brotman & Badler's count; colour-mapped)"
-                ),
-                _ => format!(
-                    "shadow volumes of light {l} containing each visible point (Crow's count; colour-mapped)"
-                ),
-            },
+            Kind::Counts(l, counts) => counts.describe(l),
             Kind::MipLevel => {
                 "mip-map level λ read per sample for its diffuse texture (-1: none)".into()
             }
@@ -114,13 +107,10 @@ impl Kind {
     }
 }
 
-/// Every buffer `renderer`'s frames can give, with the per-sample kinds first.
-fn catalogue(
-    renderer: &Renderer,
-    integrator: &Integrator,
-    shadows: &[Option<Arc<dyn LightShadows>>],
-) -> (Vec<Kind>, Vec<Buffer>) {
-    let scene = renderer.scene();
+/// Every buffer a scan-line frame of `scene` by `plan` can give, with the
+/// per-sample kinds first.
+fn catalogue(scene: &Scene, plan: &FramePlan) -> (Vec<Kind>, Vec<Buffer>) {
+    let integrator = &plan.integrator;
     let mut kinds = vec![
         Kind::Polygon,
         Kind::Depth,
@@ -142,53 +132,43 @@ fn catalogue(
         kinds.push(Kind::EnvironmentLevel);
     }
     let mut fixed = Vec::new();
-    for (l, s) in shadows.iter().enumerate() {
+    let counts = shadow::method(scene.shadows.method).counts;
+    for (l, s) in plan.shadows.iter().enumerate() {
         let Some(s) = s else { continue };
         kinds.push(Kind::Visibility(l));
-        let method = scene.shadows.method;
-        if matches!(
-            method,
-            ShadowMethod::ShadowVolumes
-                | ShadowMethod::StencilShadowVolumes
-                | ShadowMethod::UmbraPenumbra
-                | ShadowMethod::SoftShadowVolumes
-        ) {
-            kinds.push(Kind::Counts(l, method));
+        if let Some(counts) = counts {
+            kinds.push(Kind::Counts(l, counts));
         }
         fixed.extend(s.buffers(&format!("shadow-map-{l}")));
     }
     if let Some(medium) = scene.medium.as_ref().filter(|m| m.extinction > 0.0) {
         kinds.push(Kind::Inscattered);
-        if medium.method == crate::settings::MediumMethod::LightVolumes {
-            let direct = integrator.direct_lights(scene);
+        if medium.method == MediumMethod::LightVolumes {
             for (l, light) in scene.lights.iter().enumerate() {
-                let volumes = matches!(
-                    light,
-                    crate::scene::Light::Point(_)
-                        | crate::scene::Light::Spot(_)
-                        | crate::scene::Light::Distant(_)
-                );
-                if direct[l] && volumes {
+                let volumes = matches!(light, Light::Point(_) | Light::Spot(_) | Light::Distant(_));
+                if plan.direct[l] && volumes {
                     kinds.push(Kind::LitIntervals(l));
                 }
             }
         }
     }
     if let Integrator::Radiosity(solution, _) = integrator {
-        fixed.extend(hemicube_buffers(renderer, &solution.mesh));
+        fixed.extend(hemicube_buffers(
+            scene,
+            plan.hemicube_element,
+            &solution.mesh,
+        ));
     }
     (kinds, fixed)
 }
 
-/// The item buffers of the hemi-cube at the chosen element's centre (the
-/// renderer's `hemicube_element`), looking at the patches (ids are patch indices):
-/// what gathering sees from there.
-fn hemicube_buffers(renderer: &Renderer, mesh: &crate::radiosity::Mesh) -> Vec<Buffer> {
-    let scene = renderer.scene();
+/// The item buffers of the hemi-cube at the centre of the chosen `element`,
+/// looking at the patches (ids are patch indices): what gathering sees from there.
+fn hemicube_buffers(scene: &Scene, element: usize, mesh: &crate::radiosity::Mesh) -> Vec<Buffer> {
     let Some(settings) = &scene.radiosity else {
         return Vec::new();
     };
-    let Some(element) = mesh.elements.get(renderer.hemicube_element()) else {
+    let Some(element) = mesh.elements.get(element) else {
         return Vec::new();
     };
     let patch = &mesh.patches[element.patch];
@@ -227,21 +207,17 @@ fn fixed_description(name: &str) -> String {
     }
 }
 
-/// The buffers `renderer`'s frames can give.
-pub fn available_buffers(renderer: &Renderer) -> Result<Vec<BufferInfo>> {
-    let traced = renderer.scene().global.as_ref().map(|g| g.method);
-    if traced == Some(crate::settings::GlobalMethod::RayTracing) {
-        let (name, description) = super::ray_traced::RAYS;
-        return Ok(vec![BufferInfo {
+/// The buffers a frame of `scene` by `plan` can give.
+pub(super) fn available(scene: &Scene, plan: &FramePlan) -> Vec<BufferInfo> {
+    if let Integrator::Whitted(..) = plan.integrator {
+        let (name, description) = RAYS;
+        return vec![BufferInfo {
             name: name.into(),
             description: description.into(),
-        }]);
+        }];
     }
-    let integrator = renderer.integrator()?;
-    let direct = integrator.direct_lights(renderer.scene());
-    let shadows = renderer.shadows_of(&direct)?;
-    let (kinds, fixed) = catalogue(renderer, &integrator, &shadows);
-    Ok(kinds
+    let (kinds, fixed) = catalogue(scene, plan);
+    kinds
         .into_iter()
         .map(|k| BufferInfo {
             name: k.name(),
@@ -251,7 +227,7 @@ pub fn available_buffers(renderer: &Renderer) -> Result<Vec<BufferInfo>> {
             name: b.name.clone(),
             description: fixed_description(&b.name),
         }))
-        .collect())
+        .collect()
 }
 
 /// What the medium made on one band: the in-scattered radiance per sample and each
@@ -272,13 +248,7 @@ pub(super) struct FrameBuffers {
 
 impl FrameBuffers {
     /// Refuses a name the frame cannot give, naming those it can.
-    pub fn new(
-        renderer: &Renderer,
-        integrator: &Integrator,
-        shadows: &[Option<Arc<dyn LightShadows>>],
-        wanted: &[String],
-    ) -> Result<FrameBuffers> {
-        let scene = renderer.scene();
+    pub fn new(scene: &Scene, plan: &FramePlan, wanted: &[String]) -> Result<FrameBuffers> {
         let n = scene.render.supersample;
         let mut frame = FrameBuffers {
             width: scene.camera.width * n,
@@ -289,7 +259,7 @@ impl FrameBuffers {
         if wanted.is_empty() {
             return Ok(frame);
         }
-        let (kinds, fixed) = catalogue(renderer, integrator, shadows);
+        let (kinds, fixed) = catalogue(scene, plan);
         for name in wanted {
             if let Some(&kind) = kinds.iter().find(|k| &k.name() == name) {
                 let data = match kind {
@@ -405,7 +375,7 @@ impl FrameBuffers {
 }
 
 /// λ read at sample `k` for its material's diffuse texture, −1 where none.
-fn mip_level(scene: &crate::scene::Scene, band: &VisibleSurface, k: usize) -> f32 {
+fn mip_level(scene: &Scene, band: &VisibleSurface, k: usize) -> f32 {
     let s = &band.samples[k];
     if s.is_empty() {
         return -1.0;

@@ -9,11 +9,8 @@
 //! shading only), so captures never recurse; loaded and procedural environments are.
 //! A hidden polygon light is hidden with its light.
 
-use super::renderer::Renderer;
-use crate::Result;
 use crate::scene::{Camera, Light, Scene};
-use crate::texture::Texels;
-use crate::texture::environment::{EnvironmentMap, cube_map};
+use crate::texture::environment::cube_map;
 use glam::DVec3;
 
 /// The scene as the capture sees it: the hidden objects' polygons (and their
@@ -63,28 +60,4 @@ pub fn face_cameras(at: DVec3, size: u32, near: f64) -> Vec<Camera> {
             }
         })
         .collect()
-}
-
-/// The cube map of `scene` seen from `at`: six frames rendered by a renderer that
-/// captures nothing itself.
-pub fn capture_cube(
-    scene: &Scene,
-    at: DVec3,
-    size: u32,
-    hidden: &[usize],
-    filter: crate::settings::Filter,
-) -> Result<EnvironmentMap> {
-    let seen = without_objects(scene, hidden);
-    let mut renderer = Renderer::without_captures(seen);
-    let mut faces = Vec::with_capacity(6);
-    for camera in face_cameras(at, size, scene.camera.near) {
-        renderer.set_camera(camera);
-        let image = renderer.render()?;
-        faces.push(Texels {
-            width: image.width,
-            height: image.height,
-            texels: image.pixels,
-        });
-    }
-    Ok(EnvironmentMap::cube(faces, filter))
 }

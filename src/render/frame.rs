@@ -2,12 +2,25 @@
 
 use super::buffers::{FrameBuffers, MediumBand};
 use super::medium::MediumWork;
-use super::renderer::{Rendered, Renderer};
-use crate::Result;
-use crate::output::Image;
+use super::plan::FramePlan;
+use crate::error::Result;
+use crate::image_io::{Buffer, Image};
 use crate::raster::{EdgeTable, Visibility, rasterize_rows, sample_view, uv_gradients};
 use crate::scene::Scene;
 use crate::shading::FrameShading;
+
+/// A frame: its linear radiance image and the buffers asked for.
+pub struct Frame {
+    pub image: Image,
+    pub buffers: Vec<Buffer>,
+}
+
+impl Frame {
+    /// The buffer named `name`, if the frame made it.
+    pub fn buffer(&self, name: &str) -> Option<&Buffer> {
+        self.buffers.iter().find(|b| b.name == name)
+    }
+}
 
 /// Samples per band when the scene does not choose its band height: about 5 MB of
 /// visible-surface buffer, which shading reads back while it is still in the cache
@@ -24,20 +37,15 @@ pub fn band_rows(scene: &Scene) -> u32 {
     }
 }
 
-pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Rendered> {
-    let scene = renderer.scene();
-    if let Some(g) = scene.global.as_ref()
-        && g.method == crate::settings::GlobalMethod::RayTracing
-    {
-        return super::ray_traced::render(renderer, g, wanted);
-    }
-    let integrator = renderer.integrator()?;
-    let direct = integrator.direct_lights(scene);
-    let shadows = renderer.shadows_of(&direct)?;
-    let mut buffers = FrameBuffers::new(renderer, &integrator, &shadows, wanted)?;
+/// `scene`'s scan-line frame as `plan` has it made, with the buffers in `wanted`.
+pub(super) fn render_frame(scene: &Scene, plan: &FramePlan, wanted: &[String]) -> Result<Frame> {
+    let integrator = &plan.integrator;
+    let direct = &plan.direct;
+    let shadows = &plan.shadows;
+    let mut buffers = FrameBuffers::new(scene, plan, wanted)?;
 
     let view = sample_view(scene);
-    let polygons = integrator.draw_list(scene, &view, &direct);
+    let polygons = integrator.draw_list(scene, &view, direct);
     let table = EdgeTable::build(&polygons, view.height);
     let gradients = uv_gradients(&polygons);
     let frames: Vec<_> = shadows
@@ -46,8 +54,8 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
         .collect();
     let shadowed = frames.iter().any(Option::is_some);
     let shading = FrameShading::new(scene, &view, direct.clone())
-        .with_environments(renderer.environment_maps()?.to_vec());
-    let medium = MediumWork::new(renderer, &direct);
+        .with_environments(plan.environments.to_vec());
+    let medium = MediumWork::new(scene, plan);
     let volumes_on_screen = medium
         .as_ref()
         .map(|m| m.frame(scene, &view))
@@ -131,7 +139,7 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
             &visibility,
             &counts,
             &medium_band,
-            &integrator,
+            integrator,
             &shading,
         );
         let pixels_of_band = Image {
@@ -143,7 +151,7 @@ pub(super) fn render_frame(renderer: &Renderer, wanted: &[String]) -> Result<Ren
         pixels.extend(pixels_of_band.pixels);
         samples = band.samples;
     }
-    Ok(Rendered {
+    Ok(Frame {
         image: Image {
             width,
             height,

@@ -8,14 +8,21 @@
 //!   and the lights the solution does not hold (point, spot, distant, sphere) added
 //!   directly with their shadows.
 //!
-//! Room is kept for Whitted ray tracing and the two-pass method: an integrator
-//! says which polygons the scan-line pass draws (with which vertex colours), which
-//! lights shading adds directly, and how a band's samples become radiance.
+//!   directly with their shadows; with the two-pass methods' second pass (rays off
+//!   specular surfaces reading the solution) when `[global]` asks for one;
+//! - `Whitted`: recursive ray tracing (`global::whitted`), which makes its frame
+//!   with rays through the pixels instead of the scan-line pass.
+//!
+//! A scan-line integrator says which polygons the scan-line pass draws (with which
+//! vertex colours), which lights shading adds directly, and how a band's samples
+//! become radiance. The renderer alone chooses the integrator (`Renderer::plan`).
 
+use crate::global::TracedScene;
 use crate::global::two_pass::SecondPass;
 use crate::radiosity::{Solution, display};
 use crate::raster::{ScreenPolygon, ToPrepare, View, Visibility, VisibleSurface, prepare};
 use crate::scene::{Light, Scene, ShadingMode};
+use crate::settings::GlobalSettings;
 use crate::shading::{FrameShading, radiance_at, vertex_colors};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -26,7 +33,13 @@ pub enum Integrator {
     Direct,
     /// With the second pass of the two-pass method (rays off specular surfaces).
     Radiosity(Arc<Solution>, Option<Arc<SecondPass>>),
+    /// Whitted's ray tracer over the scene as rays see it, with its settings.
+    Whitted(Arc<TracedScene>, GlobalSettings),
 }
+
+/// A scan-line method asked of the ray-traced integrator, which has no scan-line
+/// pass (the frame dispatches it before).
+const NO_SCAN_LINE: &str = "a ray-traced frame has no scan-line pass";
 
 impl Integrator {
     /// Its name in messages and buffer lists.
@@ -34,15 +47,20 @@ impl Integrator {
         match self {
             Integrator::Direct => "direct",
             Integrator::Radiosity(..) => "radiosity",
+            Integrator::Whitted(..) => "ray tracing",
         }
     }
 
-    /// Per light, whether shading adds it directly (and so whether it is shadowed).
+    /// Per light, whether shading adds it directly (and so whether it is shadowed;
+    /// Whitted's tracer adds every light itself, with its own shadow rays).
     pub fn direct_lights(&self, scene: &Scene) -> Vec<bool> {
-        lit_directly(
-            scene,
-            matches!(self, Integrator::Radiosity(..)) && !exact_direct(scene),
-        )
+        match self {
+            Integrator::Whitted(..) => vec![false; scene.lights.len()],
+            _ => lit_directly(
+                scene,
+                matches!(self, Integrator::Radiosity(..)) && !exact_direct(scene),
+            ),
+        }
     }
 
     /// Whether Gouraud shading must interpolate each direct light on its own: when
@@ -56,6 +74,7 @@ impl Integrator {
             && match self {
                 Integrator::Direct => shadowed && scene.lights.len() > 1,
                 Integrator::Radiosity(..) => direct.iter().any(|&d| d),
+                Integrator::Whitted(..) => unreachable!("{NO_SCAN_LINE}"),
             }
     }
 
@@ -93,6 +112,7 @@ impl Integrator {
                         }),
                 )
             }
+            Integrator::Whitted(..) => unreachable!("{NO_SCAN_LINE}"),
         }
     }
 
@@ -131,6 +151,7 @@ impl Integrator {
                     }),
                 )
             }
+            Integrator::Whitted(..) => unreachable!("{NO_SCAN_LINE}"),
         }
     }
 
@@ -168,17 +189,18 @@ impl Integrator {
                     if let Some(second) = second
                         && scene.material_of(s.polygon as usize).is_specular()
                     {
-                        radiance += second_pass(shading, second, band, k);
+                        radiance += second_pass_at(shading, second, band, k);
                     }
                     radiance
                 })
                 .collect(),
+            Integrator::Whitted(..) => unreachable!("{NO_SCAN_LINE}"),
         }
     }
 }
 
 /// The second pass at a visible sample of a specular surface.
-fn second_pass(
+fn second_pass_at(
     shading: &FrameShading,
     second: &SecondPass,
     band: &VisibleSurface,
@@ -213,10 +235,13 @@ pub fn lit_directly(scene: &Scene, radiosity: bool) -> Vec<bool> {
 /// Whether the second pass computes the direct light of every light itself (and
 /// the solution is drawn with its indirect part only).
 pub fn exact_direct(scene: &Scene) -> bool {
-    scene.radiosity.is_some()
-        && scene.global.as_ref().is_some_and(|g| {
-            g.exact_direct && g.method != crate::settings::GlobalMethod::RayTracing
-        })
+    scene.radiosity.is_some() && second_pass(scene).is_some_and(|g| g.exact_direct)
+}
+
+/// The `[global]` settings of a second pass over a radiosity solution (the two-pass
+/// methods; not ray tracing, which reads no solution).
+pub fn second_pass(scene: &Scene) -> Option<&GlobalSettings> {
+    scene.global.as_ref().filter(|g| g.method.reads_radiosity())
 }
 
 /// A solution's elements as the scan-line pass draws them.

@@ -2,12 +2,11 @@
 //! screen once (Max's light volumes), or the scene's hierarchy for ray marching, and
 //! per band the medium applied to the shaded radiance.
 
-use super::renderer::Renderer;
+use super::plan::FramePlan;
 use crate::media::{self, Lighting};
 use crate::raster::{LitIntervals, View, VisibleSurface};
 use crate::scene::Scene;
 use crate::settings::MediumMethod;
-use crate::shadow::SharedWork;
 use crate::shadow::light_volumes::{LightVolumes, VolumesOnScreen};
 use glam::Vec3;
 use std::sync::Arc;
@@ -22,8 +21,8 @@ pub(super) struct MediumWork {
 }
 
 impl MediumWork {
-    pub(super) fn new(renderer: &Renderer, direct: &[bool]) -> Option<MediumWork> {
-        let scene = renderer.scene();
+    pub(super) fn new(scene: &Scene, plan: &FramePlan) -> Option<MediumWork> {
+        let direct = &plan.direct;
         let medium = scene.medium.as_ref().filter(|m| m.extinction > 0.0)?;
         let volumes: Vec<Option<LightVolumes>> = scene
             .lights
@@ -42,7 +41,7 @@ impl MediumWork {
         let (rays, step) = match medium.method {
             MediumMethod::LightVolumes => (None, 0.0),
             MediumMethod::RayMarching => (
-                Some(renderer.occluders()),
+                Some(plan.occluders.clone().expect("planned for ray marching")),
                 if medium.march_step > 0.0 {
                     medium.march_step
                 } else {

@@ -14,16 +14,18 @@ pub mod capture;
 mod frame;
 mod integrator;
 mod medium;
-pub(crate) mod ray_traced;
+mod plan;
+mod ray_traced;
 mod renderer;
 
-pub use buffers::{BufferInfo, available_buffers};
-pub use frame::band_rows;
+pub use buffers::BufferInfo;
+pub use frame::{Frame, band_rows};
 pub use integrator::Integrator;
-pub use renderer::{EnvironmentMaps, Prepasses, Rendered, Renderer};
+pub use plan::EnvironmentMaps;
+pub use renderer::{Prepasses, Renderer, capture_cube};
 
-use crate::Result;
-use crate::output::Image;
+use crate::error::Result;
+use crate::image_io::Image;
 use crate::raster::{View, VisibleSurface, sample_view};
 use crate::scene::Scene;
 

@@ -1,39 +1,38 @@
 //! A frame made by Whitted's ray tracer instead of the scan-line pass: eye rays
 //! through the pixels' corners, split where they differ (see `global::whitted`).
 
-use super::renderer::{Rendered, Renderer};
+use super::buffers::RAYS;
+use super::frame::Frame;
+use super::plan::FramePlan;
+use crate::error::{Error, Result};
+use crate::global::TracedScene;
 use crate::global::whitted::Whitted;
-use crate::output::{Buffer, BufferData};
+use crate::image_io::{Buffer, BufferData};
 use crate::raster::View;
+use crate::scene::Scene;
 use crate::settings::GlobalSettings;
-use crate::{Error, Result};
 
-/// The buffer a ray-traced frame gives, and what it holds.
-pub const RAYS: (&str, &str) = (
-    "rays",
-    "rays traced per pixel (eye, reflected and refracted; colour-mapped): where Whitted's adaptive subdivision split the pixel, and how deep its trees went",
-);
-
+/// The frame of `scene` by Whitted's tracer over `traced`, with the `rays` buffer
+/// if asked.
 pub(super) fn render(
-    renderer: &Renderer,
+    scene: &Scene,
+    plan: &FramePlan,
+    traced: &TracedScene,
     settings: &GlobalSettings,
     wanted: &[String],
-) -> Result<Rendered> {
+) -> Result<Frame> {
     if let Some(name) = wanted.iter().find(|w| *w != RAYS.0) {
         return Err(Error::UnknownBuffer {
             name: name.clone(),
             known: vec![RAYS.0.to_string()],
         });
     }
-    let scene = renderer.scene();
-    let traced = renderer.traced_scene(settings.analytic_spheres);
-    let maps = renderer.environment_maps()?;
     let backdrop = scene
         .render
         .backdrop
-        .and_then(|b| maps.get(b).cloned().flatten());
+        .and_then(|b| plan.environments.get(b).cloned().flatten());
     let view = View::new(&scene.camera, scene.camera.width, scene.camera.height);
-    let tracer = Whitted::new(scene, &traced, settings, backdrop.as_deref());
+    let tracer = Whitted::new(scene, traced, settings, backdrop.as_deref());
     let (image, rays) = tracer.render(&view);
     let buffers = if wanted.is_empty() {
         Vec::new()
@@ -49,5 +48,5 @@ pub(super) fn render(
             ),
         }]
     };
-    Ok(Rendered { image, buffers })
+    Ok(Frame { image, buffers })
 }

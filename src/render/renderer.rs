@@ -7,19 +7,23 @@
 //! Moving the camera invalidates none of it; moving a light, only that light's
 //! shadows; changing the shadow settings, every light's shadows.
 
-use super::capture::capture_cube;
-use super::frame::render_frame;
-use super::integrator::{Integrator, exact_direct, lit_directly};
+use super::buffers::{BufferInfo, available};
+use super::capture::{face_cameras, without_objects};
+use super::frame::{Frame, render_frame};
+use super::integrator::{Integrator, exact_direct, lit_directly, second_pass};
+use super::plan::{EnvironmentMaps, FramePlan};
+use super::ray_traced;
+use crate::error::{Error, Result};
 use crate::global::TracedScene;
 use crate::global::two_pass::{self, SecondPass};
-use crate::output::{Buffer, Image};
+use crate::image_io::Image;
 use crate::radiosity::{self, Solution};
 use crate::scene::{Camera, EnvironmentSource, Light, Scene};
-use crate::settings::GlobalMethod;
-use crate::settings::ShadowSettings;
+use crate::settings::{Filter, MediumMethod, ShadowSettings};
 use crate::shadow::{self, LightShadows, SceneOccluders, SharedWork};
+use crate::texture::Texels;
 use crate::texture::environment::EnvironmentMap;
-use crate::{Error, Result};
+use glam::DVec3;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
@@ -36,15 +40,7 @@ pub struct Prepasses {
     pub captures: usize,
 }
 
-/// Per scene environment, its map (`None`: not shown).
-pub type EnvironmentMaps = Arc<[Option<Arc<EnvironmentMap>>]>;
-
-/// A frame and the buffers asked for.
-pub struct Rendered {
-    pub image: Image,
-    pub buffers: Vec<Buffer>,
-}
-
+/// A scene and the view-independent work of its frames, kept between them.
 pub struct Renderer {
     scene: Scene,
     occluders: Mutex<Option<Arc<SceneOccluders>>>,
@@ -94,7 +90,7 @@ impl Renderer {
 
     /// The scene's environment maps, captures rendered the first time they are
     /// needed (`None` inside a capture).
-    pub fn environment_maps(&self) -> Result<EnvironmentMaps> {
+    fn environment_maps(&self) -> Result<EnvironmentMaps> {
         let mut slot = self.environments.lock().expect("no poisoned lock");
         if let Some(maps) = slot.as_ref() {
             return Ok(maps.clone());
@@ -118,7 +114,7 @@ impl Renderer {
     }
 
     /// The scene as rays see it, built once (geometry never changes).
-    pub fn traced_scene(&self, analytic_spheres: bool) -> Arc<TracedScene> {
+    fn traced_scene(&self, analytic_spheres: bool) -> Arc<TracedScene> {
         let mut slot = self.traced.lock().expect("no poisoned lock");
         match slot.as_ref() {
             Some((analytic, traced)) if *analytic == analytic_spheres => traced.clone(),
@@ -212,53 +208,104 @@ impl Renderer {
     /// lights the frame shadows (and, under the two-pass methods, materials their
     /// first pass cannot carry).
     pub fn check(&self) -> Result<()> {
-        let direct = lit_directly(
-            &self.scene,
-            self.scene.radiosity.is_some() && !exact_direct(&self.scene),
-        );
-        for (index, _) in direct.iter().enumerate().filter(|(_, d)| **d) {
-            shadow::check(&self.scene, index, self.scene.shadows.method)?;
+        let method = shadow::method(self.scene.shadows.method);
+        if self.ray_traced().is_none() {
+            let direct = lit_directly(
+                &self.scene,
+                self.scene.radiosity.is_some() && !exact_direct(&self.scene),
+            );
+            for (index, _) in direct.iter().enumerate().filter(|(_, d)| **d) {
+                shadow::check(&self.scene, index, method.method)?;
+            }
+            (method.budget)(&self.scene).map_err(Error::OverBudget)?;
         }
-        if let Some(g) = &self.scene.global
-            && g.method != GlobalMethod::RayTracing
-        {
+        if let Some(g) = second_pass(&self.scene) {
             two_pass::check(&self.scene, g.method)?;
         }
         Ok(())
     }
 
-    /// The frame's linear radiance image.
-    pub fn render(&self) -> Result<Image> {
-        Ok(render_frame(self, &[])?.image)
+    /// What a user should know of this scene as this renderer draws it: the scene's
+    /// own warnings, then its shadow method's (one line each).
+    pub fn warnings(&self) -> Vec<String> {
+        let method = shadow::method(self.scene.shadows.method);
+        let mut warnings = self.scene.warnings.clone();
+        if self.ray_traced().is_none() {
+            warnings.extend((method.warnings)(&self.scene));
+        }
+        warnings
     }
 
-    /// The frame, and the buffers named in `buffers` (see `available_buffers`).
-    pub fn render_with_buffers(&self, buffers: &[String]) -> Result<Rendered> {
-        render_frame(self, buffers)
+    /// The frame's linear radiance image.
+    pub fn render(&self) -> Result<Image> {
+        Ok(self.render_with_buffers(&[])?.image)
+    }
+
+    /// The frame, and the buffers named in `buffers` (see `available_buffers`):
+    /// Whitted's rays through the pixels, or the scan-line frame.
+    pub fn render_with_buffers(&self, buffers: &[String]) -> Result<Frame> {
+        let plan = self.plan()?;
+        match &plan.integrator {
+            Integrator::Whitted(traced, settings) => {
+                ray_traced::render(&self.scene, &plan, traced, settings, buffers)
+            }
+            _ => render_frame(&self.scene, &plan, buffers),
+        }
+    }
+
+    /// The buffers this renderer's frames can give.
+    pub fn available_buffers(&self) -> Result<Vec<BufferInfo>> {
+        Ok(available(&self.scene, &self.plan()?))
+    }
+
+    /// The `[global]` settings when the scene is ray traced (Whitted).
+    fn ray_traced(&self) -> Option<&crate::settings::GlobalSettings> {
+        self.scene
+            .global
+            .as_ref()
+            .filter(|g| !g.method.reads_radiosity())
+    }
+
+    /// Everything the next frame needs but the scene: the one place that decides
+    /// which integrator runs, and that solves radiosity when none is kept.
+    fn plan(&self) -> Result<FramePlan> {
+        let integrator = self.integrator()?;
+        let direct = integrator.direct_lights(&self.scene);
+        let shadows = self.shadows_of(&direct)?;
+        let environments = self.environment_maps()?;
+        let marched = self
+            .scene
+            .medium
+            .as_ref()
+            .is_some_and(|m| m.extinction > 0.0 && m.method == MediumMethod::RayMarching);
+        let occluders =
+            (marched && !matches!(integrator, Integrator::Whitted(..))).then(|| self.occluders());
+        Ok(FramePlan {
+            integrator,
+            direct,
+            shadows,
+            environments,
+            occluders,
+            hemicube_element: self.hemicube_element,
+        })
     }
 
     /// How this scene's frames are lit.
-    pub fn integrator(&self) -> Result<Integrator> {
+    fn integrator(&self) -> Result<Integrator> {
+        if let Some(g) = self.ray_traced() {
+            let traced = self.traced_scene(g.analytic_spheres);
+            return Ok(Integrator::Whitted(traced, g.clone()));
+        }
+        let second_pass = second_pass(&self.scene);
         let Some(settings) = &self.scene.radiosity else {
-            if let Some(g) = &self.scene.global
-                && g.method != GlobalMethod::RayTracing
-            {
+            if let Some(g) = second_pass {
                 return Err(Error::Radiosity(format!(
                     "global.method = \"{}\" reads a radiosity solution in its second pass: add a [radiosity] table",
-                    if g.method == GlobalMethod::TwoPass {
-                        "two-pass"
-                    } else {
-                        "rushmeier-torrance"
-                    }
+                    g.method.name()
                 )));
             }
             return Ok(Integrator::Direct);
         };
-        let second_pass = self
-            .scene
-            .global
-            .as_ref()
-            .filter(|g| g.method != GlobalMethod::RayTracing);
         let solution = {
             let mut slot = self.radiosity.lock().expect("no poisoned lock");
             match slot.as_ref() {
@@ -314,7 +361,7 @@ impl Renderer {
 
     /// The shadow pre-passes of the lights `direct` selects (`None` for the others
     /// and for unshadowed lights).
-    pub fn shadows_of(&self, direct: &[bool]) -> Result<Vec<Option<Arc<dyn LightShadows>>>> {
+    fn shadows_of(&self, direct: &[bool]) -> Result<Vec<Option<Arc<dyn LightShadows>>>> {
         direct
             .iter()
             .enumerate()
@@ -329,7 +376,7 @@ impl Renderer {
     }
 
     /// Light `index`'s shadow pre-pass (`None`: unshadowed).
-    pub fn light_shadows(&self, index: usize) -> Result<Option<Arc<dyn LightShadows>>> {
+    fn light_shadows(&self, index: usize) -> Result<Option<Arc<dyn LightShadows>>> {
         let mut slot = self.lights[index].lock().expect("no poisoned lock");
         if let Some(shadows) = slot.as_ref() {
             return Ok(Some(shadows.clone()));
@@ -352,4 +399,28 @@ impl SharedWork for Renderer {
         })
         .clone()
     }
+}
+
+/// The cube map of `scene` seen from `at`, `size` texels a side: six frames rendered
+/// by a renderer that captures nothing itself, without the `hidden` objects.
+pub fn capture_cube(
+    scene: &Scene,
+    at: DVec3,
+    size: u32,
+    hidden: &[usize],
+    filter: Filter,
+) -> Result<EnvironmentMap> {
+    let seen = without_objects(scene, hidden);
+    let mut renderer = Renderer::without_captures(seen);
+    let mut faces = Vec::with_capacity(6);
+    for camera in face_cameras(at, size, scene.camera.near) {
+        renderer.set_camera(camera);
+        let image = renderer.render()?;
+        faces.push(Texels {
+            width: image.width,
+            height: image.height,
+            texels: image.pixels,
+        });
+    }
+    Ok(EnvironmentMap::cube(faces, filter))
 }

@@ -5,24 +5,22 @@ use super::file::{LightFile, MAX_MEMORY_BUDGET_MB, ObjectFile, SceneFile, ShapeK
 use super::radiosity_settings;
 use super::resources::Resources;
 use super::shapes::{self, Faces};
+use super::tables::named;
 use super::{
     DistantLight, Light, Material, Object, ObjectFrame, PointLight, Polygon, PolygonLight,
-    RenderSettings, Scene, ShadowSettings, SphereLight, SpotDistribution, SpotLight, environments,
-    materials, obj, textures, transform, validate,
+    RenderSettings, Scene, SphereLight, SpotDistribution, SpotLight, environments, materials, obj,
+    textures, transform, validate,
 };
 use crate::error::ensure_valid;
+use crate::error::{Error, Result};
 use crate::geometry::polygon::{area, centroid, newell_normal, non_planarity};
-use crate::settings::{MapFilter, PercentageCloser};
 use crate::texture::Texture;
 use crate::texture::mapping::Mapping;
-use crate::{Error, Result};
 use glam::{DMat4, DVec3};
 use std::collections::HashMap;
 use std::path::Path;
 use std::sync::Arc;
 
-/// The most rings of hexagonal cells a jittered soft shadow takes (12,481 cells).
-const MAX_RINGS: u32 = 64;
 /// Default segment count of spheres and cylinders.
 const DEFAULT_RESOLUTION: u32 = 32;
 /// The most segments a sphere or cylinder may have (a sphere of 1024 has half a
@@ -63,96 +61,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         "render.exposure must be a positive number"
     );
     validate::image_size(camera.width, camera.height, render.supersample)?;
-    let s = &file.shadows;
-    ensure_valid!(
-        (1..=8192).contains(&s.map_resolution),
-        "shadows.map_resolution",
-        "shadows.map_resolution must be between 1 and 8192, got {}",
-        s.map_resolution
-    );
-    ensure_valid!(
-        (1..=MAX_MEMORY_BUDGET_MB).contains(&s.max_memory_mb),
-        "shadows.max_memory_mb",
-        "shadows.max_memory_mb must be from 1 to {MAX_MEMORY_BUDGET_MB} (1 TiB), got {}",
-        s.max_memory_mb
-    );
-    ensure_valid!(
-        s.map_bias.is_finite() && s.map_bias >= 0.0,
-        "shadows.map_bias",
-        "shadows.map_bias must be a non-negative number"
-    );
-    ensure_valid!(
-        s.pcf % 2 == 1 && s.pcf <= 15,
-        "shadows.pcf",
-        "shadows.pcf must be an odd kernel size from 1 to 15, got {}",
-        s.pcf
-    );
-    let n = s.pcf_samples.isqrt();
-    ensure_valid!(
-        (1..=1024).contains(&s.pcf_samples) && n * n == s.pcf_samples,
-        "shadows.pcf_samples",
-        "shadows.pcf_samples must be a square number from 1 to 1024 (n x n jittered points), got {}",
-        s.pcf_samples
-    );
-    let [low, high] = s.pcf_bias;
-    ensure_valid!(
-        low.is_finite() && high.is_finite() && 0.0 <= low && low <= high,
-        "shadows.pcf_bias",
-        "shadows.pcf_bias must be [min, max] with 0 <= min <= max (slope-scaled texels), got [{low}, {high}]"
-    );
-    ensure_valid!(
-        s.pcf_scale.is_finite() && s.pcf_scale > 0.0 && s.pcf_scale <= 64.0,
-        "shadows.pcf_scale",
-        "shadows.pcf_scale must be a positive number up to 64, got {}",
-        s.pcf_scale
-    );
-    ensure_valid!(
-        s.pcf_min_size.is_finite() && (0.0..=64.0).contains(&s.pcf_min_size),
-        "shadows.pcf_min_size",
-        "shadows.pcf_min_size must be between 0 and 64 texels, got {}",
-        s.pcf_min_size
-    );
-    ensure_valid!(
-        (1..=64).contains(&s.light_samples),
-        "shadows.light_samples",
-        "shadows.light_samples must be between 1 and 64 (N x N samples per extended light), got {}",
-        s.light_samples
-    );
-    ensure_valid!(
-        (1..=1024).contains(&s.light_points),
-        "shadows.light_points",
-        "shadows.light_points must be between 1 and 1024 (points replacing each light), got {}",
-        s.light_points
-    );
-    ensure_valid!(
-        s.rings <= MAX_RINGS,
-        "shadows.rings",
-        "shadows.rings must be at most {MAX_RINGS} (1 + 3K(K + 1) cells, one shadow ray each per sample), got {}",
-        s.rings
-    );
-    let shadows = ShadowSettings {
-        light_points: s.light_points,
-        rings: s.rings,
-        sampling: s.sampling,
-        seed: s.seed,
-        light_samples: s.light_samples,
-        method: s.method,
-        map_resolution: s.map_resolution,
-        map_bias: s.map_bias,
-        map_filter: s.map_filter.unwrap_or(match s.pcf {
-            1 => MapFilter::None,
-            _ => MapFilter::Box,
-        }),
-        pcf: s.pcf,
-        percentage_closer: PercentageCloser {
-            samples: s.pcf_samples,
-            bias: s.pcf_bias,
-            scale: s.pcf_scale,
-            min_size: s.pcf_min_size,
-        },
-        post_pass: s.post_pass,
-        self_shadow: s.self_shadow,
-    };
+    let shadows = super::shadow_settings::from_file(&file.shadows)?;
 
     let radiosity = file
         .radiosity
@@ -167,7 +76,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         .transpose()?;
     if let Some(g) = &global {
         ensure_valid!(
-            g.method != crate::settings::GlobalMethod::RayTracing || render.supersample == 1,
+            g.method.reads_radiosity() || render.supersample == 1,
             "render.supersample",
             "render.supersample: ray tracing antialiases by Whitted's adaptive subdivision (global.subdivisions); leave supersample at 1, got {}",
             render.supersample
@@ -261,26 +170,6 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         }
     }
     lights.extend(builder.polygon_lights());
-    if shadows.method == crate::settings::ShadowMethod::ShadowMap && !lights.is_empty() {
-        // Six faces of f32 depths per light, all kept by the renderer.
-        let needed =
-            (24 * (shadows.map_resolution as u64).pow(2)).saturating_mul(lights.len() as u64);
-        let budget = s.max_memory_mb.saturating_mul(1 << 20);
-        if needed > budget {
-            return Err(Error::OverBudget(Box::new(crate::error::OverBudget {
-                key: "shadows.map_resolution".into(),
-                value: shadows.map_resolution.to_string(),
-                what: format!(
-                    "the six shadow-map faces of each of the scene's {} lights",
-                    lights.len()
-                ),
-                needed,
-                budget,
-                budget_key: "shadows.max_memory_mb".into(),
-                suggestion: "use a lower map_resolution, or raise shadows.max_memory_mb".into(),
-            })));
-        }
-    }
     builder.warn_untextured_modes(render.shading);
     // A black image with no word of why helps nobody.
     if builder.polygons.is_empty() {
@@ -824,31 +713,6 @@ fn check_keys(o: &ObjectFile) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// The index of `name` among `known` (things of `kind`), or an error at `key` that
-/// lists the known names.
-pub(super) fn named(
-    known: &HashMap<String, usize>,
-    name: &str,
-    key: &str,
-    kind: &str,
-) -> Result<usize> {
-    known.get(name).copied().ok_or_else(|| {
-        let mut names: Vec<&str> = known.keys().map(String::as_str).collect();
-        names.sort();
-        Error::invalid(
-            key,
-            format!(
-                "{key}: unknown {kind} `{name}` (known: {})",
-                if names.is_empty() {
-                    "none".to_string()
-                } else {
-                    names.join(", ")
-                }
-            ),
-        )
-    })
 }
 
 /// A deserialiser's message in the scene file's words: its first line (the key is

@@ -7,12 +7,12 @@ use super::resources::Resources;
 use super::validate::vec3;
 use super::{Capture, Environment, EnvironmentSource};
 use crate::error::ensure_valid;
-use crate::output::{self, Format};
+use crate::error::{Error, Result};
+use crate::image_io::{self, Format};
 use crate::settings::Filter;
 use crate::texture::Texels;
 use crate::texture::environment::{EnvironmentMap, FILTERS, Layout};
 use crate::texture::texels::MAX_TEXTURE_SIDE;
-use crate::{Error, Result};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -174,7 +174,7 @@ fn read_image(path: &str, what: &str, resources: &dyn Resources) -> Result<Texel
         )
     })?;
     let bytes = resources.read(path_ref).map_err(|e| e.within(what))?;
-    let image = output::decode(&bytes, format).map_err(|e| e.at_path(path_ref).within(what))?;
+    let image = image_io::decode(&bytes, format).map_err(|e| e.at_path(path_ref).within(what))?;
     ensure_valid!(
         image.width > 0
             && image.height > 0

@@ -2,7 +2,7 @@
 
 use super::file::{GlobalFile, MechanismFile};
 use super::validate::colour;
-use crate::Result;
+use crate::error::Result;
 use crate::error::ensure_valid;
 use crate::settings::{GlobalSettings as Settings, Mechanisms};
 

@@ -220,15 +220,53 @@ pub struct LightSample {
 /// scene lumiere renders, so a shadow segment to it crosses everything in the way.
 pub const DISTANT_REACH: f64 = 1e7;
 
-impl Light {
-    /// The kind as the scene file writes it.
-    pub fn kind(&self) -> &'static str {
+/// The kinds of light, as the scene file's `type` names them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LightKind {
+    Point,
+    Distant,
+    Polygon,
+    Sphere,
+    Spot,
+}
+
+impl LightKind {
+    /// Every kind, in the order messages list them.
+    pub const ALL: [LightKind; 5] = [
+        LightKind::Point,
+        LightKind::Spot,
+        LightKind::Distant,
+        LightKind::Sphere,
+        LightKind::Polygon,
+    ];
+
+    /// The name the scene file writes.
+    pub fn name(self) -> &'static str {
         match self {
-            Light::Point(_) => "point",
-            Light::Distant(_) => "distant",
-            Light::Polygon(_) => "polygon",
-            Light::Sphere(_) => "sphere",
-            Light::Spot(_) => "spot",
+            LightKind::Point => "point",
+            LightKind::Distant => "distant",
+            LightKind::Polygon => "polygon",
+            LightKind::Sphere => "sphere",
+            LightKind::Spot => "spot",
+        }
+    }
+}
+
+impl std::fmt::Display for LightKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Light {
+    /// Its kind.
+    pub fn kind(&self) -> LightKind {
+        match self {
+            Light::Point(_) => LightKind::Point,
+            Light::Distant(_) => LightKind::Distant,
+            Light::Polygon(_) => LightKind::Polygon,
+            Light::Sphere(_) => LightKind::Sphere,
+            Light::Spot(_) => LightKind::Spot,
         }
     }
 
@@ -374,7 +412,7 @@ mod tests {
         l.name = Some("key".into());
         let light = Light::Spot(l);
         assert_eq!(light.label(2), "light 2 (spot `key`)");
-        assert_eq!(light.kind(), "spot");
+        assert_eq!(light.kind(), LightKind::Spot);
         assert_eq!(light.position(), Some(DVec3::ZERO));
     }
 }

@@ -1,11 +1,11 @@
 //! Materials from the scene file and from MTL files.
 
-use super::build::named;
 use super::file::MaterialFile;
+use super::tables::named;
 use super::validate::colour;
 use super::{Bump, Material, textures};
 use crate::error::ensure_valid;
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 use glam::Vec3;
 use std::collections::HashMap;
 

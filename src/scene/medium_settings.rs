@@ -1,7 +1,7 @@
 //! `[medium]` checked and turned into `MediumSettings`.
 
 use super::file::MediumFile;
-use crate::Result;
+use crate::error::Result;
 use crate::error::ensure_valid;
 use crate::settings::{MediumSettings, PhaseFunction};
 

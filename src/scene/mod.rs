@@ -16,6 +16,7 @@ mod obj;
 mod radiosity_settings;
 pub mod ray_queries;
 pub mod resources;
+mod shadow_settings;
 mod shapes;
 pub mod tables;
 mod textures;
@@ -25,8 +26,8 @@ pub use validate::MAX_SIDE;
 
 pub use build::scene_from_table;
 pub use lights::{
-    DistantLight, Light, LightSample, PointLight, PolygonLight, SphereLight, SpotDistribution,
-    SpotLight,
+    DistantLight, Light, LightKind, LightSample, PointLight, PolygonLight, SphereLight,
+    SpotDistribution, SpotLight,
 };
 
 use crate::texture::environment::EnvironmentMap;

@@ -5,8 +5,8 @@
 use super::Vertex;
 use super::resources::Resources;
 use super::shapes::Faces;
+use crate::error::{Error, Result};
 use crate::geometry::polygon::{area, newell_normal, non_planarity};
-use crate::{Error, Result};
 use glam::{DVec2, DVec3};
 use std::cell::RefCell;
 use std::io::BufReader;

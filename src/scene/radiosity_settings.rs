@@ -1,7 +1,7 @@
 //! `[radiosity]` from the file, checked.
 
 use super::file::{MAX_MEMORY_BUDGET_MB, RadiosityFile};
-use crate::Result;
+use crate::error::Result;
 use crate::error::ensure_valid;
 use crate::settings::{Division, RadiositySettings as Settings, Subdivision};
 

@@ -1,7 +1,7 @@
 //! Where a scene's files come from: a directory on disk (a user's scene file) or the
 //! catalogue embedded in the binary. Paths in a scene are relative to the scene.
 
-use crate::{Error, FileOp, Result};
+use crate::error::{Error, FileOp, Result};
 use include_dir::Dir;
 use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};

@@ -1,8 +1,9 @@
 //! Scene tables before they become scenes: parsing with positions in errors, merging
 //! a base table under another (catalogue `extends`), and `--set key=value` overrides.
 
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 use std::collections::BTreeSet;
+use std::collections::HashMap;
 use toml::{Table, Value};
 
 /// Parses TOML text; an error names `origin:line:column`.
@@ -158,6 +159,26 @@ fn parse_value(raw: &str) -> Value {
         .ok()
         .and_then(|mut t| t.remove("v"))
         .unwrap_or_else(|| Value::String(raw.to_string()))
+}
+
+/// The index of `name` among `known` (things of `kind`), or an error at `key` that
+/// lists the known names.
+pub fn named(known: &HashMap<String, usize>, name: &str, key: &str, kind: &str) -> Result<usize> {
+    known.get(name).copied().ok_or_else(|| {
+        let mut names: Vec<&str> = known.keys().map(String::as_str).collect();
+        names.sort();
+        Error::invalid(
+            key,
+            format!(
+                "{key}: unknown {kind} `{name}` (known: {})",
+                if names.is_empty() {
+                    "none".to_string()
+                } else {
+                    names.join(", ")
+                }
+            ),
+        )
+    })
 }
 
 #[cfg(test)]

@@ -8,10 +8,10 @@ use super::resources::Resources;
 use super::validate::{colour, vec3};
 use super::{ObjectFrame, Vertex};
 use crate::error::ensure_valid;
+use crate::error::{Error, Result};
 use crate::texture::mapping::{Frame, Mapping, fix_seam};
 use crate::texture::procedural::Procedural;
 use crate::texture::{Texels, Texture};
-use crate::{Error, Result};
 use glam::{DVec2, DVec3, Vec3};
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 
 use super::Vertex;
 use super::file::{Scale, TransformStep};
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 use glam::{DMat3, DMat4, DVec3};
 
 /// The matrix of a list of steps, the first step applied first.

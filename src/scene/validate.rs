@@ -3,7 +3,7 @@
 use super::Camera;
 use super::file::{CameraFile, Vec3File};
 use crate::error::ensure_valid;
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 use glam::DVec3;
 
 /// Largest width or height accepted.

@@ -33,11 +33,38 @@ use super::{BandShadows, FrameShadows, LightShadows, SceneOccluders};
 use crate::geometry::disc::area_inside;
 use crate::geometry::sampling::Stream;
 use crate::raster::{View, VisibleSurface};
+use crate::scene::{Light, LightKind};
 use crate::scene::{Scene, SphereLight};
 use crate::settings::CellSampling;
+use crate::settings::ShadowMethod;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use std::sync::Arc;
+
+/// The registry's entry: sphere lights.
+pub(crate) static METHOD: super::Method = super::Method {
+    method: ShadowMethod::JitteredSoftShadows,
+    name: "jittered-soft-shadows",
+    entry: Some("jittered-soft-shadows"),
+    handles: "a soft-shadow method for sphere lights",
+    lights: &[LightKind::Sphere],
+    counts: None,
+    budget: super::no_budget,
+    warnings: super::no_warnings,
+    prepare: |scene, index, settings, shared| {
+        let Light::Sphere(sphere) = &scene.lights[index] else {
+            unreachable!("checked")
+        };
+        Some(Arc::new(JitteredSoftShadows::new(
+            shared.occluders(),
+            sphere.clone(),
+            index,
+            settings.rings,
+            settings.sampling,
+            settings.seed,
+        )))
+    },
+};
 
 /// One hexagonal cell of the unit disc's tiling.
 #[derive(Clone, Debug, PartialEq)]

@@ -23,6 +23,7 @@
 //! nothing is silently unshadowed.
 
 pub mod cube_faces;
+mod depth_image;
 pub mod jittered_soft_shadows;
 pub mod light_volumes;
 pub mod percentage_closer;
@@ -36,10 +37,12 @@ pub mod shadow_volumes;
 pub mod soft_shadow_volumes;
 pub mod stencil_shadow_volumes;
 pub mod umbra_penumbra;
+mod unshadowed;
 
-use crate::output::Buffer;
+use crate::error::OverBudget;
+use crate::image_io::Buffer;
 use crate::raster::{LightVisibility, View, Visibility, VisibleSurface};
-use crate::scene::{Light, Scene};
+use crate::scene::{LightKind, Scene};
 use crate::settings::ShadowSettings;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -89,24 +92,108 @@ pub trait SharedWork {
     fn occluders(&self) -> Arc<SceneOccluders>;
 }
 
+/// What a shadow method declares of itself, in its own file: the registry's entry.
+/// Renderer, buffers, error messages, scene checks and the viewer ask it.
+pub struct Method {
+    pub method: ShadowMethod,
+    /// The name the scene file and the command line use.
+    pub name: &'static str,
+    /// The catalogue entry that shows it (`None`: no shadows to show).
+    pub entry: Option<&'static str>,
+    /// What it is, for the refusal of a light it cannot shadow.
+    pub handles: &'static str,
+    /// The lights it shadows; it refuses the others.
+    pub lights: &'static [LightKind],
+    /// The per-sample count buffer it makes, if any.
+    pub counts: Option<CountBuffer>,
+    /// Refuses, before any work, settings whose pre-passes would exceed
+    /// `shadows.max_memory_mb`.
+    pub budget: fn(&Scene) -> Result<(), Box<OverBudget>>,
+    /// What a user should know of this scene under this method (one line each).
+    pub warnings: fn(&Scene) -> Vec<String>,
+    /// Its view-independent pre-pass for light `index` (`None`: casts no shadows).
+    pub prepare: Prepare,
+}
+
+/// A method's pre-pass builder: scene, light index, settings, shared work.
+pub type Prepare =
+    fn(&Scene, usize, &ShadowSettings, &dyn SharedWork) -> Option<Arc<dyn LightShadows>>;
+
+/// A per-sample count buffer, named `{prefix}-{light}`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CountBuffer {
+    pub prefix: &'static str,
+    /// What it holds; `{l}` stands for the light's index.
+    pub description: &'static str,
+}
+
+impl CountBuffer {
+    pub fn name(&self, light: usize) -> String {
+        format!("{}-{light}", self.prefix)
+    }
+
+    pub fn describe(&self, light: usize) -> String {
+        self.description.replace("{l}", &light.to_string())
+    }
+}
+
+/// No budget: the method's pre-pass grows with the scene, which has its own.
+fn no_budget(_: &Scene) -> Result<(), Box<OverBudget>> {
+    Ok(())
+}
+
+/// Nothing to warn of.
+fn no_warnings(_: &Scene) -> Vec<String> {
+    Vec::new()
+}
+
+/// Every shadow method, in the order lists show them.
+pub const METHODS: [ShadowMethod; 10] = [
+    ShadowMethod::None,
+    ShadowMethod::RayCast,
+    ShadowMethod::Scanline,
+    ShadowMethod::ShadowPolygons,
+    ShadowMethod::ShadowVolumes,
+    ShadowMethod::StencilShadowVolumes,
+    ShadowMethod::ShadowMap,
+    ShadowMethod::UmbraPenumbra,
+    ShadowMethod::SoftShadowVolumes,
+    ShadowMethod::JitteredSoftShadows,
+];
+
+/// The registry: what `method` declares of itself.
+pub fn method(method: ShadowMethod) -> &'static Method {
+    match method {
+        ShadowMethod::None => &unshadowed::METHOD,
+        ShadowMethod::RayCast => &ray_cast::METHOD,
+        ShadowMethod::Scanline => &scanline_shadows::METHOD,
+        ShadowMethod::ShadowPolygons => &shadow_polygons::METHOD,
+        ShadowMethod::ShadowMap => &shadow_map::METHOD,
+        ShadowMethod::ShadowVolumes => &shadow_volumes::METHOD,
+        ShadowMethod::StencilShadowVolumes => &stencil_shadow_volumes::METHOD,
+        ShadowMethod::UmbraPenumbra => &umbra_penumbra::METHOD,
+        ShadowMethod::SoftShadowVolumes => &soft_shadow_volumes::METHOD,
+        ShadowMethod::JitteredSoftShadows => &jittered_soft_shadows::METHOD,
+    }
+}
+
+impl ShadowMethod {
+    /// The name the scene file and the command line use.
+    pub fn name(self) -> &'static str {
+        method(self).name
+    }
+}
+
 /// Whether `method` can shadow light `index` of `scene` (before any work is done).
 pub fn check(scene: &Scene, index: usize, method: ShadowMethod) -> Result<(), Unsupported> {
+    let declared = self::method(method);
     let light = &scene.lights[index];
-    let supported = match method {
-        ShadowMethod::None | ShadowMethod::RayCast => true,
-        ShadowMethod::UmbraPenumbra | ShadowMethod::SoftShadowVolumes => {
-            matches!(light, Light::Point(_) | Light::Spot(_) | Light::Polygon(_))
-        }
-        ShadowMethod::JitteredSoftShadows => matches!(light, Light::Sphere(_)),
-        ShadowMethod::ShadowVolumes | ShadowMethod::StencilShadowVolumes => {
-            !matches!(light, Light::Polygon(_) | Light::Sphere(_))
-        }
-        _ => light.position().is_some(),
-    };
-    match supported {
+    match declared.lights.contains(&light.kind()) {
         true => Ok(()),
         false => Err(Unsupported {
             method,
+            name: declared.name,
+            handles: declared.handles,
             light: light.label(index),
         }),
     }
@@ -120,76 +207,10 @@ pub fn prepare(
     settings: &ShadowSettings,
     shared: &dyn SharedWork,
 ) -> Result<Option<Arc<dyn LightShadows>>, Unsupported> {
-    let light = &scene.lights[index];
-    let method = settings.method;
-    if method == ShadowMethod::None {
-        return Ok(None);
-    }
-    if method == ShadowMethod::RayCast {
-        return Ok(Some(Arc::new(ray_cast::RayCast::new(
-            shared.occluders(),
-            light.clone(),
-            index,
-            settings.light_samples,
-        ))));
-    }
-    check(scene, index, method)?;
-    match (method, light) {
-        (ShadowMethod::UmbraPenumbra, _) => {
-            let exact = umbra_penumbra::UmbraPenumbra::new(scene, light).expect("checked");
-            return Ok(Some(Arc::new(exact)));
-        }
-        (ShadowMethod::SoftShadowVolumes, _) => {
-            let n = settings.light_points;
-            let soft =
-                soft_shadow_volumes::SoftShadowVolumes::new(scene, light, index, n, settings.seed)
-                    .expect("checked");
-            return Ok(Some(Arc::new(soft)));
-        }
-        (ShadowMethod::JitteredSoftShadows, Light::Sphere(sphere)) => {
-            return Ok(Some(Arc::new(
-                jittered_soft_shadows::JitteredSoftShadows::new(
-                    shared.occluders(),
-                    sphere.clone(),
-                    index,
-                    settings.rings,
-                    settings.sampling,
-                    settings.seed,
-                ),
-            )));
-        }
-        (ShadowMethod::ShadowVolumes | ShadowMethod::StencilShadowVolumes, _) => {
-            let source = match light {
-                Light::Distant(sun) => shadow_volumes::Source::Distant(sun.direction),
-                _ => shadow_volumes::Source::Point(light.position().expect("checked")),
-            };
-            let counting = match method {
-                ShadowMethod::ShadowVolumes => shadow_volumes::Counting::ScanOut,
-                _ => shadow_volumes::Counting::Stencil,
-            };
-            let volumes = shadow_volumes::ShadowVolumes::from_source(scene, source, counting);
-            return Ok(Some(Arc::new(volumes)));
-        }
-        _ => {}
-    }
-    let at = light.position().expect("checked");
-    Ok(Some(match method {
-        ShadowMethod::None
-        | ShadowMethod::RayCast
-        | ShadowMethod::UmbraPenumbra
-        | ShadowMethod::SoftShadowVolumes
-        | ShadowMethod::JitteredSoftShadows
-        | ShadowMethod::ShadowVolumes
-        | ShadowMethod::StencilShadowVolumes => unreachable!("handled above"),
-        ShadowMethod::Scanline => Arc::new(scanline_shadows::ScanlineShadows::new(scene, at, true)),
-        ShadowMethod::ShadowMap => Arc::new(shadow_map::CubeShadowMap::build(
-            scene,
-            at,
-            settings.map_resolution,
-            shadow_map::Lookup::of(settings, index),
-        )),
-        ShadowMethod::ShadowPolygons => Arc::new(shadow_polygons::ShadowPolygons::new(scene, at)),
-    }))
+    check(scene, index, settings.method)?;
+    Ok((method(settings.method).prepare)(
+        scene, index, settings, shared,
+    ))
 }
 
 /// Scene-wide work built afresh for one call (the renderer keeps its own).

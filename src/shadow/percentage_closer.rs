@@ -38,7 +38,7 @@
 //! Scene keys: `[shadows] method = "shadow-map"`, `map_filter = "percentage-closer"`,
 //! `pcf_samples = N`, `pcf_bias = [min, max]`, `pcf_scale`, `pcf_min_size`, `seed`.
 
-use super::shadow_map::{DepthImage, MapPoint};
+use super::depth_image::{DepthImage, MapPoint};
 use crate::geometry::sampling::Stream;
 use crate::raster::View;
 use crate::settings::PercentageCloser;

@@ -17,10 +17,32 @@ use super::{BandShadows, FrameShadows, LightShadows, faces_away, per_sample};
 use crate::geometry::bvh::Aabb;
 use crate::geometry::sampling::Stream;
 use crate::raster::{NO_POLYGON, View, VisibleSurface};
+use crate::scene::LightKind;
 use crate::scene::ray_queries::SceneRays;
 use crate::scene::{Light, Scene};
+use crate::settings::ShadowMethod;
 use rayon::prelude::*;
 use std::sync::Arc;
+
+/// The registry's entry: every light, extended ones by stratified samples.
+pub(crate) static METHOD: super::Method = super::Method {
+    method: ShadowMethod::RayCast,
+    name: "ray-cast",
+    entry: Some("ray-cast-shadows"),
+    handles: "a method for every light",
+    lights: &LightKind::ALL,
+    counts: None,
+    budget: super::no_budget,
+    warnings: super::no_warnings,
+    prepare: |scene, index, settings, shared| {
+        Some(Arc::new(RayCast::new(
+            shared.occluders(),
+            scene.lights[index].clone(),
+            index,
+            settings.light_samples,
+        )))
+    },
+};
 
 /// The scene's polygons and their hierarchy, owned, so that a renderer can keep them
 /// between frames and share them between lights.

@@ -31,13 +31,32 @@ use crate::geometry::central_projection::onto_plane;
 use crate::raster::{
     EdgeTable, LightVisibility, ScreenPolygon, View, VisibleSurface, scan_out, screen_polygons,
 };
+use crate::scene::LightKind;
 use crate::scene::{Polygon, Scene};
+use crate::settings::ShadowMethod;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::ops::Range;
+use std::sync::Arc;
 use std::sync::OnceLock;
+
+/// The registry's entry: lights at a point.
+pub(crate) static METHOD: super::Method = super::Method {
+    method: ShadowMethod::Scanline,
+    name: "scanline",
+    entry: Some("scanline-shadows"),
+    handles: "a hard-shadow method for point and spot lights",
+    lights: &[LightKind::Point, LightKind::Spot],
+    counts: None,
+    budget: super::no_budget,
+    warnings: super::no_warnings,
+    prepare: |scene, index, _, _| {
+        let at = scene.lights[index].position().expect("checked");
+        Some(Arc::new(ScanlineShadows::new(scene, at, true)))
+    },
+};
 
 /// A polygon's extent as seen from the light: a cone around `axis`.
 #[derive(Clone, Copy, Debug)]

@@ -29,81 +29,67 @@
 //! `map_filter = "none" | "box" | "percentage-closer"`, `pcf`, `post_pass`.
 
 use super::cube_faces::{FACES, face_of, face_view};
+pub use super::depth_image::{DepthImage, MapPoint};
 use super::percentage_closer::{footprint, percentage_closer};
 use super::{BandShadows, FrameShadows, LightShadows, per_sample};
+use crate::error::OverBudget;
 use crate::geometry::sampling::Stream;
-use crate::output::{Buffer, BufferData};
+use crate::image_io::{Buffer, BufferData};
 use crate::raster::{View, VisibleSurface, rasterize_depth, screen_polygons};
+use crate::scene::LightKind;
 use crate::scene::Scene;
+use crate::settings::ShadowMethod;
 use crate::settings::{MapFilter, PercentageCloser, ShadowSettings};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
+use std::sync::Arc;
+
+/// The registry's entry: lights at a point, six faces of depths each, kept by the
+/// renderer under `shadows.max_memory_mb`.
+pub(crate) static METHOD: super::Method = super::Method {
+    method: ShadowMethod::ShadowMap,
+    name: "shadow-map",
+    entry: Some("shadow-map"),
+    handles: "a hard-shadow method for point and spot lights",
+    lights: &[LightKind::Point, LightKind::Spot],
+    counts: None,
+    budget,
+    warnings: super::no_warnings,
+    prepare: |scene, index, settings, _| {
+        let at = scene.lights[index].position().expect("checked");
+        Some(Arc::new(CubeShadowMap::build(
+            scene,
+            at,
+            settings.map_resolution,
+            Lookup::of(settings, index),
+        )))
+    },
+};
+
+/// Six faces of f32 depths per light, all kept by the renderer.
+fn budget(scene: &Scene) -> Result<(), Box<OverBudget>> {
+    let shadows = &scene.shadows;
+    let lights = scene.lights.len() as u64;
+    let needed = (24 * (shadows.map_resolution as u64).pow(2)).saturating_mul(lights);
+    let budget = shadows.max_memory_mb.saturating_mul(1 << 20);
+    if lights == 0 || needed <= budget {
+        return Ok(());
+    }
+    Err(Box::new(OverBudget {
+        key: "shadows.map_resolution".into(),
+        value: shadows.map_resolution.to_string(),
+        what: format!("the six shadow-map faces of each of the scene's {lights} lights"),
+        needed,
+        budget,
+        budget_key: "shadows.max_memory_mb".into(),
+        suggestion: "use a lower map_resolution, or raise shadows.max_memory_mb".into(),
+    }))
+}
 
 /// One face of the cube: its view from the light and its depth image.
 pub struct Face {
     pub view: View,
     pub depth: Vec<f32>,
-}
-
-/// A square depth image seen from the light: a face of the cube, or any image (the
-/// tests build them by hand). Texel (i, j), row-major from the top, covers
-/// [i, i + 1] × [j, j + 1] of map coordinates.
-#[derive(Clone, Copy)]
-pub struct DepthImage<'a> {
-    pub size: u32,
-    pub depth: &'a [f32],
-}
-
-impl DepthImage<'_> {
-    /// Whether a point at `depth` (its bias taken off) is not behind texel (i, j);
-    /// texels beyond the border are the border's.
-    pub fn passes(&self, i: i64, j: i64, depth: f64) -> bool {
-        let last = self.size as i64 - 1;
-        let (i, j) = (i.clamp(0, last), j.clamp(0, last));
-        depth <= self.depth[(j * self.size as i64 + i) as usize] as f64
-    }
-
-    /// The texel under map position `at` (the border's beyond it).
-    pub fn texel(&self, at: DVec2) -> (i64, i64) {
-        let last = self.size as i64 - 1;
-        let index = |v: f64| (v.floor() as i64).clamp(0, last);
-        (index(at.x), index(at.y))
-    }
-
-    /// The box filter: the fraction of the `kernel × kernel` texels centred on texel
-    /// (i, j) that pass at `depth` (kernel 1: Williams's single test).
-    pub fn box_filter(&self, (i, j): (i64, i64), kernel: u32, depth: f64) -> f32 {
-        let r = (kernel / 2) as i64;
-        let mut passed = 0;
-        for dj in -r..=r {
-            for di in -r..=r {
-                passed += self.passes(i + di, j + dj, depth) as u32;
-            }
-        }
-        passed as f32 / (kernel * kernel) as f32
-    }
-}
-
-/// Where a point falls in the map, and its depth test.
-#[derive(Clone, Copy, Debug)]
-pub struct MapPoint {
-    /// The cube face (index in `FACES`).
-    pub face: usize,
-    /// Its map position, in texels.
-    pub at: DVec2,
-    /// Its depth along the face's axis.
-    pub depth: f64,
-    /// 1 + tan θ: the slope scale of its bias.
-    pub slope: f64,
-    /// The size of one texel at its distance.
-    pub texel: f64,
-}
-
-impl MapPoint {
-    /// Its depth less a bias of `bias` slope-scaled texels.
-    pub fn less(&self, bias: f64) -> f64 {
-        self.depth - bias * self.slope * self.texel
-    }
 }
 
 /// How the second pass reads the map.

@@ -36,9 +36,28 @@ use super::{BandShadows, FrameShadows, LightShadows, per_sample};
 use crate::geometry::sutherland_hodgman;
 use crate::geometry::weiler_atherton::{self, Region, area};
 use crate::raster::{DepthPlane, RasterVertex, ScreenPolygon, View, VisibleSurface};
+use crate::scene::LightKind;
 use crate::scene::Scene;
+use crate::settings::ShadowMethod;
 use glam::{DVec2, DVec3, Vec3};
 use rayon::prelude::*;
+use std::sync::Arc;
+
+/// The registry's entry: lights at a point.
+pub(crate) static METHOD: super::Method = super::Method {
+    method: ShadowMethod::ShadowPolygons,
+    name: "shadow-polygons",
+    entry: Some("shadow-polygons"),
+    handles: "a hard-shadow method for point and spot lights",
+    lights: &[LightKind::Point, LightKind::Spot],
+    counts: None,
+    budget: super::no_budget,
+    warnings: super::no_warnings,
+    prepare: |scene, index, _, _| {
+        let at = scene.lights[index].position().expect("checked");
+        Some(Arc::new(ShadowPolygons::new(scene, at)))
+    },
+};
 
 /// Coordinates of each light face span [0, FACE_SIZE]².
 const FACE_SIZE: u32 = 1024;

@@ -37,9 +37,49 @@ use crate::raster::{
 };
 use crate::scene::Scene;
 use crate::scene::ray_queries::segment_meets_polygon;
+use crate::scene::{Light, LightKind};
+use crate::settings::ShadowMethod;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::sync::Arc;
+
+/// The registry's entry: lights at a point and distant lights; a warning for the
+/// objects whose volumes may leak.
+pub(crate) static METHOD: super::Method = super::Method {
+    method: ShadowMethod::ShadowVolumes,
+    name: "shadow-volumes",
+    entry: Some("shadow-volumes"),
+    handles: "a hard-shadow method for point, spot and distant lights",
+    lights: &[LightKind::Point, LightKind::Spot, LightKind::Distant],
+    counts: Some(COUNTS),
+    budget: super::no_budget,
+    warnings: leak_warnings,
+    prepare: |scene, index, _, _| {
+        let source = Source::of(&scene.lights[index]);
+        Some(Arc::new(ShadowVolumes::from_source(
+            scene,
+            source,
+            Counting::ScanOut,
+        )))
+    },
+};
+
+/// Crow's count per sample, the buffer both ways of counting make.
+pub(crate) const COUNTS: super::CountBuffer = super::CountBuffer {
+    prefix: "shadow-volume-counts",
+    description: "shadow volumes of light {l} containing each visible point (Crow's count; colour-mapped)",
+};
+
+/// One line per object whose volume may leak light.
+pub(crate) fn leak_warnings(scene: &Scene) -> Vec<String> {
+    open_objects(scene)
+        .into_iter()
+        .map(|name| {
+            format!("object `{name}` is not a closed 2-manifold: its shadow volume may leak light")
+        })
+        .collect()
+}
 
 /// A shadow polygon: the quad through a silhouette edge, with its normal pointing out
 /// of the shadow volume.
@@ -66,6 +106,14 @@ pub enum Source {
 }
 
 impl Source {
+    /// Where `light`'s volumes start: its direction if distant, else its position.
+    pub fn of(light: &Light) -> Source {
+        match light {
+            Light::Distant(sun) => Source::Distant(sun.direction),
+            _ => Source::Point(light.position().expect("checked")),
+        }
+    }
+
     fn faces(self, normal: DVec3, on_plane: DVec3) -> bool {
         match self {
             Source::Point(light) => normal.dot(light - on_plane) > 0.0,

@@ -29,9 +29,33 @@ use super::stencil_shadow_volumes::CountBuffer;
 use super::{BandShadows, FrameShadows, LightShadows, faces_away};
 use crate::geometry::sampling::Stream;
 use crate::raster::{LightVisibility, View, VisibleSurface};
+use crate::scene::LightKind;
 use crate::scene::{Light, Scene};
+use crate::settings::ShadowMethod;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
+use std::sync::Arc;
+
+/// The registry's entry: polygon lights by points, and lights at a point.
+pub(crate) static METHOD: super::Method = super::Method {
+    method: ShadowMethod::SoftShadowVolumes,
+    name: "soft-shadow-volumes",
+    entry: Some("soft-shadow-volumes"),
+    handles: "a soft-shadow method for polygon lights (and point and spot lights)",
+    lights: &[LightKind::Point, LightKind::Spot, LightKind::Polygon],
+    counts: Some(super::CountBuffer {
+        prefix: "blocked",
+        description: "points of light {l} hidden from each visible point (Brotman & Badler's count; colour-mapped)",
+    }),
+    budget: super::no_budget,
+    warnings: super::no_warnings,
+    prepare: |scene, index, settings, _| {
+        let light = &scene.lights[index];
+        let (n, seed) = (settings.light_points, settings.seed);
+        let soft = SoftShadowVolumes::new(scene, light, index, n, seed).expect("checked");
+        Some(Arc::new(soft))
+    },
+};
 
 /// The pre-pass: one set of Crow's volumes per point of the light.
 pub struct SoftShadowVolumes {

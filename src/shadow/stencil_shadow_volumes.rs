@@ -18,11 +18,35 @@
 //! count their points' volumes this way. Scene key:
 //! `[shadows] method = "stencil-shadow-volumes"`.
 
+use super::shadow_volumes::{Counting, Source};
 use super::shadow_volumes::{ShadowVolumes, eye_count_from, on_screen};
 use super::{BandShadows, FrameShadows};
 use crate::raster::{EdgeTable, ScreenPolygon, View, VisibleSurface, spans_inside};
+use crate::scene::LightKind;
 use crate::scene::Scene;
+use crate::settings::ShadowMethod;
 use rayon::prelude::*;
+use std::sync::Arc;
+
+/// The registry's entry: Crow's volumes, counted in a buffer.
+pub(crate) static METHOD: super::Method = super::Method {
+    method: ShadowMethod::StencilShadowVolumes,
+    name: "stencil-shadow-volumes",
+    entry: Some("stencil-shadow-volumes"),
+    handles: "a hard-shadow method for point, spot and distant lights",
+    lights: &[LightKind::Point, LightKind::Spot, LightKind::Distant],
+    counts: Some(super::shadow_volumes::COUNTS),
+    budget: super::no_budget,
+    warnings: super::shadow_volumes::leak_warnings,
+    prepare: |scene, index, _, _| {
+        let source = Source::of(&scene.lights[index]);
+        Some(Arc::new(ShadowVolumes::from_source(
+            scene,
+            source,
+            Counting::Stencil,
+        )))
+    },
+};
 
 /// One light's volumes on a view's screen, ready to be drawn into a count buffer.
 pub struct CountBuffer<'a> {

@@ -57,11 +57,33 @@ use crate::geometry::polygon::triangulate;
 use crate::geometry::sutherland_hodgman::clip;
 use crate::geometry::weiler_atherton::{self, contour_area};
 use crate::raster::{LightVisibility, ScreenPolygon, View, VisiblePart, VisibleSurface};
+use crate::scene::LightKind;
 use crate::scene::{Light, Scene};
+use crate::settings::ShadowMethod;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::sync::Arc;
 use std::sync::OnceLock;
+
+/// The registry's entry: polygon lights exactly, and lights at a point.
+pub(crate) static METHOD: super::Method = super::Method {
+    method: ShadowMethod::UmbraPenumbra,
+    name: "umbra-penumbra",
+    entry: Some("umbra-penumbra"),
+    handles: "a soft-shadow method for polygon lights (and point and spot lights)",
+    lights: &[LightKind::Point, LightKind::Spot, LightKind::Polygon],
+    counts: Some(super::CountBuffer {
+        prefix: "umbra",
+        description: "light {l}'s umbra map: 0 lit, 1 penumbra, 2 umbra (Nishita & Nakamae; colour-mapped)",
+    }),
+    budget: super::no_budget,
+    warnings: super::no_warnings,
+    prepare: |scene, index, _, _| {
+        let exact = UmbraPenumbra::new(scene, &scene.lights[index]).expect("checked");
+        Some(Arc::new(exact))
+    },
+};
 
 /// The umbra map's levels.
 pub const LIT: i32 = 0;

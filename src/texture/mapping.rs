@@ -27,7 +27,7 @@
 //! of side `size`. Where the line misses the surface, we fall back to the
 //! intermediate-surface normal (a choice; the paper leaves it open).
 
-use crate::Result;
+use crate::error::Result;
 use crate::error::ensure_valid;
 use glam::{DVec2, DVec3};
 use std::f64::consts::{PI, TAU};

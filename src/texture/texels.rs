@@ -5,8 +5,8 @@
 //! top-right; texel (i, j) has row j = 0 at the top of the image and its centre at
 //! u = (i + 0.5) / width, v = 1 − (j + 0.5) / height.
 
-use crate::output::srgb_decode;
-use crate::{Error, Result};
+use crate::error::{Error, Result};
+use crate::image_io::srgb_decode;
 use glam::{DVec2, Vec3};
 
 /// What a lookup outside [0, 1] does.

@@ -90,7 +90,7 @@ pub fn write(
         let material = &scene.materials[mesh.material];
         let file = format!("{k:03}.obj");
         let path = folder.join(&file);
-        lumiere::output::write_atomically(&path, obj(mesh).as_bytes())?;
+        lumiere::image_io::write_atomically(&path, obj(mesh).as_bytes())?;
         let _ = writeln!(
             xml,
             "  <shape type=\"obj\" id=\"{k:03}\">\n    <string name=\"filename\" value=\"{folder_name}/{file}\"/>\n    <boolean name=\"face_normals\" value=\"{}\"/>",
@@ -175,7 +175,7 @@ pub fn write(
         }
     }
     xml.push_str("</scene>\n");
-    lumiere::output::write_atomically(output, xml.as_bytes())?;
+    lumiere::image_io::write_atomically(output, xml.as_bytes())?;
     Ok(())
 }
 

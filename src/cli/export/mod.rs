@@ -87,7 +87,7 @@ pub fn run(args: Args) -> Result<()> {
     match args.format {
         Format::Pov => {
             let text = pov::scene(&scene, &meshes, args.area_samples);
-            lumiere::output::write_atomically(&args.output, text.as_bytes())?;
+            lumiere::image_io::write_atomically(&args.output, text.as_bytes())?;
         }
         Format::Mitsuba => {
             let integrator =

@@ -5,9 +5,9 @@
 
 use super::topics::Page;
 use anyhow::{Context, Result};
-use lumiere::output;
+use lumiere::image_io;
 use lumiere::radiosity::{self, Solution, Solver};
-use lumiere::render::{Renderer, available_buffers};
+use lumiere::render::Renderer;
 use lumiere::settings::ShadowMethod;
 use lumiere::{catalogue, load_scene};
 use serde::{Deserialize, Serialize};
@@ -147,11 +147,12 @@ pub fn render(
     }
     let image = renderer.render()?;
     let seconds = start.elapsed().as_secs_f64();
-    output::save(&image, &dir.join("image.png"), exposure)?;
+    image_io::save(&image, &dir.join("image.png"), exposure)?;
     let file = |name: &str| format!("{rel}/{name}");
 
     // The buffers this page shows, with what each holds.
-    let shown: Vec<_> = available_buffers(&renderer)?
+    let shown: Vec<_> = renderer
+        .available_buffers()?
         .into_iter()
         .filter(|b| page.shows_buffer(&b.name))
         .take(MAX_BUFFERS)
@@ -161,7 +162,7 @@ pub fn render(
     if !names.is_empty() {
         for buffer in renderer.render_with_buffers(&names)?.buffers {
             let name = format!("buffer-{}.png", buffer.name);
-            output::save(
+            image_io::save(
                 &super::super::buffer_picture::displayed(&buffer, exposure),
                 &dir.join(&name),
                 1.0,
@@ -185,7 +186,7 @@ pub fn render(
         let path = dir.join("progress.gif");
         let out = std::fs::File::create(&path)
             .with_context(|| format!("cannot write {}", path.display()))?;
-        let mut gif = output::Animation::new(std::io::BufWriter::new(out), exposure, 600);
+        let mut gif = image_io::Animation::new(std::io::BufWriter::new(out), exposure, 600);
         for snapshot in snapshots {
             let mut frame = Renderer::new(renderer.scene().clone());
             frame.set_radiosity_solution(Arc::new(snapshot));
@@ -200,7 +201,7 @@ pub fn render(
         super::super::shadow_polygons::plan_of(renderer.scene())
             .ok()
             .map(|bytes| -> Result<String> {
-                output::write_atomically(&dir.join("plan.png"), &bytes)?;
+                image_io::write_atomically(&dir.join("plan.png"), &bytes)?;
                 Ok(file("plan.png"))
             })
             .transpose()?
@@ -211,12 +212,15 @@ pub fn render(
     let agreement = match reference {
         None => None,
         Some(reference) => {
-            let theirs = output::load(reference)?;
-            let ours =
-                output::load_png_bytes(&output::encode(&image, output::Format::Png, exposure)?)?;
-            let c = output::compare(&theirs, &ours, 1.0)?;
-            let difference = output::difference_image(&theirs, &ours, 1.0, DIFFERENCE_GAIN);
-            output::save(&difference, &dir.join("difference.png"), 1.0)?;
+            let theirs = image_io::load(reference)?;
+            let ours = image_io::load_png_bytes(&image_io::encode(
+                &image,
+                image_io::Format::Png,
+                exposure,
+            )?)?;
+            let c = image_io::compare(&theirs, &ours, 1.0)?;
+            let difference = image_io::difference_image(&theirs, &ours, 1.0, DIFFERENCE_GAIN);
+            image_io::save(&difference, &dir.join("difference.png"), 1.0)?;
             Some(Agreement {
                 rmse: c.rmse,
                 differing_share: c.differing_share,

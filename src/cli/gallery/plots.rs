@@ -5,7 +5,7 @@
 use super::svg::{BarChart, LinePlot, Scale, Series};
 use super::topics::Plot;
 use anyhow::{Context, Result};
-use lumiere::output::{self, Image};
+use lumiere::image_io::{self, Image};
 use lumiere::radiosity::form_factors::patch_factors;
 use lumiere::radiosity::gathering::gauss_seidel_observed;
 use lumiere::radiosity::{self, Division, Estimator, FormFactorMethod, Mesh, Solver};
@@ -62,7 +62,7 @@ fn render(scene: &str, sets: &[String]) -> Result<(Image, f32)> {
 }
 
 fn rmse(a: &(Image, f32), b: &(Image, f32)) -> Result<f64> {
-    Ok(output::compare(&a.0, &b.0, a.1)?.rmse)
+    Ok(image_io::compare(&a.0, &b.0, a.1)?.rmse)
 }
 
 /// `sets` and the entry's test size.
@@ -141,7 +141,7 @@ fn visibility(scene: &str, sets: &[String]) -> Result<Vec<f32>> {
     renderer.check()?;
     let rendered = renderer.render_with_buffers(&["visibility-0".into()])?;
     match &rendered.buffers[0].data {
-        output::BufferData::Values { data, .. } => Ok(data.clone()),
+        image_io::BufferData::Values { data, .. } => Ok(data.clone()),
         _ => anyhow::bail!("visibility-0 is not a buffer of values"),
     }
 }

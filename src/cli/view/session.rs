@@ -8,10 +8,10 @@ use super::orbit::Orbit;
 use super::progressive::Progressive;
 use anyhow::Result;
 use glam::DVec3;
-use lumiere::output::{self, Image};
-use lumiere::render::{Renderer, available_buffers};
+use lumiere::image_io::{self, Image};
+use lumiere::render::Renderer;
 use lumiere::scene::{Light, Scene};
-use lumiere::settings::{Filter, ShadowMethod, Solver};
+use lumiere::settings::{Filter, Solver};
 use lumiere::{catalogue, load_scene};
 use std::collections::HashMap;
 use std::time::{Duration, Instant};
@@ -283,10 +283,10 @@ impl Session {
         if scale == 1 {
             self.times[other] = Some(time);
         }
-        let c = output::compare(&image, &second, exposure)?;
+        let c = image_io::compare(&image, &second, exposure)?;
         self.difference = Some((c.rmse, c.differing_share));
         if self.show_difference {
-            let d = output::difference_image(&image, &second, exposure, 4.0);
+            let d = image_io::difference_image(&image, &second, exposure, 4.0);
             return Ok(Some(to_frame(&d, 1.0)));
         }
         // Left half one mode, right half the other.
@@ -316,7 +316,8 @@ impl Session {
             return Ok(());
         }
         let renderer = &self.renderers[&(mode, self.filter)];
-        let names: Vec<String> = available_buffers(renderer)?
+        let names: Vec<String> = renderer
+            .available_buffers()?
             .into_iter()
             .map(|b| b.name)
             .collect();
@@ -379,29 +380,16 @@ fn modes(scene: &Scene) -> Result<Vec<Mode>> {
             },
         ]);
     }
-    let methods = [
-        (ShadowMethod::None, "cornell-box-point"),
-        (ShadowMethod::RayCast, "ray-cast-shadows"),
-        (ShadowMethod::Scanline, "scanline-shadows"),
-        (ShadowMethod::ShadowPolygons, "shadow-polygons"),
-        (ShadowMethod::ShadowVolumes, "shadow-volumes"),
-        (ShadowMethod::StencilShadowVolumes, "stencil-shadow-volumes"),
-        (ShadowMethod::ShadowMap, "shadow-map"),
-        (ShadowMethod::UmbraPenumbra, "umbra-penumbra"),
-        (ShadowMethod::SoftShadowVolumes, "soft-shadow-volumes"),
-        (ShadowMethod::JitteredSoftShadows, "jittered-soft-shadows"),
-    ];
     let mut modes = Vec::new();
-    for (method, entry) in methods {
+    for method in lumiere::shadow::METHODS {
         let mut candidate = scene.clone();
         candidate.shadows.method = method;
         if Renderer::new(candidate).check().is_ok() {
             modes.push(Mode {
                 name: method.name().into(),
-                paper: if method == ShadowMethod::None {
-                    "no shadows".into()
-                } else {
-                    paper(entry)
+                paper: match lumiere::shadow::method(method).entry {
+                    Some(entry) => paper(entry),
+                    None => "no shadows".into(),
                 },
                 sets: vec![format!("shadows.method=\"{}\"", method.name())],
             });
@@ -452,7 +440,7 @@ fn to_frame(image: &Image, exposure: f32) -> Frame {
         .pixels
         .iter()
         .map(|&p| {
-            let [r, g, b] = output::to_srgb8(p, exposure);
+            let [r, g, b] = image_io::to_srgb8(p, exposure);
             (r as u32) << 16 | (g as u32) << 8 | b as u32
         })
         .collect();

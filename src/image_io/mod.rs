@@ -15,7 +15,7 @@ pub use buffer::{Buffer, BufferData, NO_ID};
 pub use compare::{Comparison, compare, difference_image};
 pub use staged_directory::StagedDirectory;
 
-use crate::{Error, FileOp, Result};
+use crate::error::{Error, FileOp, Result};
 use glam::Vec3;
 use std::io::Write;
 use std::path::{Path, PathBuf};

@@ -2,7 +2,7 @@
 //! little-endian f32 RGB triples (negative scale), rows from the bottom up.
 
 use super::Image;
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 use glam::Vec3;
 
 pub fn encode(image: &Image) -> Vec<u8> {

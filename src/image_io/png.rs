@@ -1,7 +1,7 @@
 //! PNG: 8-bit sRGB.
 
 use super::{Image, srgb_decode, to_srgb8};
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 use glam::Vec3;
 
 pub fn encode(image: &Image, exposure: f32) -> Result<Vec<u8>> {

@@ -3,7 +3,7 @@
 //! a PNG and a PFM or EXR of the same render compare equal).
 
 use super::{Image, srgb_decode, to_srgb8};
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 use glam::Vec3;
 
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]

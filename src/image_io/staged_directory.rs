@@ -5,7 +5,7 @@
 //! the directory as it was.
 
 use super::{Unfinished, refuse_read_only, without_temporary_name};
-use crate::{Error, FileOp, Result};
+use crate::error::{Error, FileOp, Result};
 use std::path::{Path, PathBuf};
 
 pub struct StagedDirectory {

@@ -4,7 +4,7 @@
 //! PFM.
 
 use super::Image;
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 use ::exr::prelude::{Encoding, SpecificChannels, Vec2, WritableImage};
 use glam::Vec3;
 use std::io::Cursor;

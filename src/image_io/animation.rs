@@ -3,7 +3,7 @@
 //! however many there are.
 
 use super::{Image, to_srgb8};
-use crate::{Error, Result};
+use crate::error::{Error, Result};
 use std::io::Write;
 
 /// A looping GIF being written to `W`; each frame shown `delay_ms`, sRGB after

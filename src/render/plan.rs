@@ -1,0 +1,29 @@
+//! The frame plan: everything a frame needs that is not the scene, decided and
+//! built by the renderer before the frame starts. The frame, its buffers, its medium
+//! and the ray-traced path read it and never reach back: which integrator runs,
+//! which lights are shadowed and by what, which environments are shown, what the
+//! medium marches against, which element's hemi-cube is shown.
+
+use super::integrator::Integrator;
+use crate::shadow::{LightShadows, SceneOccluders};
+use crate::texture::environment::EnvironmentMap;
+use std::sync::Arc;
+
+/// Per scene environment, its map (`None`: not shown).
+pub type EnvironmentMaps = Arc<[Option<Arc<EnvironmentMap>>]>;
+
+pub struct FramePlan {
+    /// How the frame is lit.
+    pub integrator: Integrator,
+    /// Per light, whether shading adds it directly (and so whether it is shadowed).
+    pub direct: Vec<bool>,
+    /// Per light, its shadow pre-pass (`None`: not added directly, or unshadowed).
+    pub shadows: Vec<Option<Arc<dyn LightShadows>>>,
+    /// The scene's environments as this frame shows them.
+    pub environments: EnvironmentMaps,
+    /// The occluders' hierarchy, when a medium is ray-marched against it.
+    pub occluders: Option<Arc<SceneOccluders>>,
+    /// The radiosity element whose hemi-cube item buffers the `hemicube-*` buffers
+    /// show.
+    pub hemicube_element: usize,
+}
