@@ -20,10 +20,13 @@ pub fn resources() -> Embedded {
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Algorithm {
+    /// The entry's id, its file name without `.toml`.
     pub id: String,
+    /// What the entry shows, in a line.
     pub title: String,
     /// Authors and year as cited, e.g. "Watkins 1970".
     pub authors: String,
+    /// The year of the paper.
     pub year: u32,
     /// The part of the course it belongs to (a page of the gallery).
     pub topic: Topic,
@@ -33,6 +36,7 @@ pub struct Algorithm {
     pub summary: String,
     /// The size the golden image is rendered at.
     pub test_width: u32,
+    /// The golden image's height.
     pub test_height: u32,
     /// Another entry whose scene this one starts from.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -43,17 +47,26 @@ pub struct Algorithm {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Topic {
+    /// Watkins's scan-line pass, clipping, flat, Gouraud and Phong shading.
     VisibleSurfaces,
+    /// Shadows of point, spot and distant lights.
     HardShadows,
+    /// Shadows of extended lights: umbra and penumbra.
     SoftShadows,
+    /// Light scattered by a participating medium.
     LightVolumes,
+    /// Texture, mip and bump mapping.
     Texture,
+    /// Reflection and refraction maps.
     EnvironmentMapping,
+    /// Gathering, shooting and substructuring.
     Radiosity,
+    /// Whitted's ray tracing and the two-pass methods.
     GlobalIllumination,
 }
 
 impl Topic {
+    /// Every topic, in the course's order.
     pub const ALL: [Topic; 8] = [
         Topic::VisibleSurfaces,
         Topic::HardShadows,
@@ -79,6 +92,7 @@ impl Topic {
         }
     }
 
+    /// The title of the topic's page.
     pub fn title(self) -> &'static str {
         match self {
             Topic::VisibleSurfaces => "Visible surfaces and shading",
@@ -94,7 +108,9 @@ impl Topic {
 }
 
 #[derive(Clone, Debug)]
+/// A catalogue entry: what it demonstrates, and its scene.
 pub struct Entry {
+    /// Its `[algorithm]` table.
     pub algorithm: Algorithm,
     /// The scene, `extends` resolved.
     pub scene: toml::Table,
@@ -128,6 +144,8 @@ pub fn source(id: &str) -> Result<&'static str> {
         .ok_or_else(|| Error::Catalogue(format!("{id}.toml is not UTF-8")))
 }
 
+/// The entry `id`, its `extends` resolved (an unknown id is refused, with the
+/// nearest id suggested).
 pub fn entry(id: &str) -> Result<Entry> {
     entry_from(id, &mut Vec::new())
 }

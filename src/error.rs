@@ -13,11 +13,14 @@ use std::path::{Path, PathBuf};
 /// A shadow method asked for a light it cannot handle.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Unsupported {
+    /// The method asked.
     pub method: ShadowMethod,
     /// The method's name, and what it handles ("a hard-shadow method for point and
     /// spot lights"), as the method declares them.
     pub name: &'static str,
+    /// What the method handles, as it declares it.
     pub handles: &'static str,
+    /// The light refused, as the scene labels it (`lights[1] (`bulb`)`).
     pub light: String,
 }
 
@@ -42,12 +45,19 @@ impl std::error::Error for Unsupported {}
     bytes(*budget)
 )]
 pub struct OverBudget {
+    /// The scene key that asks for too much (`shadows.map_resolution`).
     pub key: String,
+    /// Its value.
     pub value: String,
+    /// What the memory would hold.
     pub what: String,
+    /// The bytes needed.
     pub needed: u64,
+    /// The bytes allowed.
     pub budget: u64,
+    /// The key that sets the budget (`shadows.max_memory_mb`).
     pub budget_key: String,
+    /// What to do instead.
     pub suggestion: String,
 }
 
@@ -57,9 +67,12 @@ pub enum Error {
     /// A file could not be read or written.
     #[error("cannot {op} {}", path.display())]
     Io {
+        /// What was being done.
         op: FileOp,
+        /// The file.
         path: PathBuf,
         #[source]
+        /// What the system said.
         source: std::io::Error,
     },
 
@@ -67,14 +80,22 @@ pub enum Error {
     /// `position` its (line, column), from 1.
     #[error("{file}{}: {message}", line_column(position))]
     Parse {
+        /// The scene file or catalogue entry.
         file: String,
+        /// Line and column, from 1.
         position: Option<(usize, usize)>,
+        /// What the parser said.
         message: String,
     },
 
     /// A `--set key=value` override that cannot be applied.
     #[error("--set {assignment}: {message}")]
-    Override { assignment: String, message: String },
+    Override {
+        /// The assignment as given (`camera.width=abc`).
+        assignment: String,
+        /// Why it cannot be applied.
+        message: String,
+    },
 
     /// A scene value that cannot be used (unknown, missing, out of range, not
     /// applicable). `key` is its path in the scene file (`radiosity.tolerance`),
@@ -82,7 +103,12 @@ pub enum Error {
     /// `In` (`radius` in `lights[1]`); `message` is the whole line, naming the key
     /// and, where there is one, the value.
     #[error("{message}")]
-    Invalid { key: String, message: String },
+    Invalid {
+        /// The key's path.
+        key: String,
+        /// The whole line.
+        message: String,
+    },
 
     /// A scene that cannot be used in a way no single key of the scene file names
     /// (an OBJ model's materials, the size of the sample grid).
@@ -92,8 +118,10 @@ pub enum Error {
     /// A problem with the scene `spec` (a scene file or catalogue id).
     #[error("scene {spec}")]
     InScene {
+        /// The scene file or catalogue id.
         spec: String,
         #[source]
+        /// The problem.
         source: Box<Error>,
     },
 
@@ -101,20 +129,29 @@ pub enum Error {
     /// `textures.wood`, `materials.grey.mapping`, `model.obj: its MTL file`).
     #[error("{place}")]
     In {
+        /// Where it is.
         place: String,
         #[source]
+        /// The problem.
         source: Box<Error>,
     },
 
     /// An OBJ or MTL model that cannot be read as one.
     #[error("{}: {message}", path.display())]
-    Model { path: PathBuf, message: String },
+    Model {
+        /// The OBJ or MTL file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
 
     /// Image bytes that cannot be decoded, or an image that cannot be encoded; `path`
     /// is the file when one is known.
     #[error("{}{message}", path_prefix(path))]
     Image {
+        /// The file, when one is known.
         path: Option<PathBuf>,
+        /// What is wrong.
         message: String,
     },
 
@@ -123,7 +160,10 @@ pub enum Error {
         "{}: unknown image format (use .png for sRGB, .pfm or .exr for linear radiance)",
         path.display()
     )]
-    Format { path: PathBuf },
+    Format {
+        /// The path.
+        path: PathBuf,
+    },
 
     /// Two images compared are not the same size.
     #[error(
@@ -134,7 +174,9 @@ pub enum Error {
         second.1
     )]
     SizeMismatch {
+        /// The first image's width and height.
         first: (u32, u32),
+        /// The second image's width and height.
         second: (u32, u32),
     },
 
@@ -145,7 +187,9 @@ pub enum Error {
         did_you_mean(suggestion)
     )]
     UnknownEntry {
+        /// The id asked for.
         id: String,
+        /// The nearest id, if one is near.
         suggestion: Option<String>,
     },
 
@@ -172,9 +216,13 @@ pub enum Error {
         gib(*budget)
     )]
     Memory {
+        /// Elements (rows).
         elements: usize,
+        /// Patches (columns).
         patches: usize,
+        /// Bytes needed.
         needed: u64,
+        /// Bytes allowed.
         budget: u64,
     },
 
@@ -184,11 +232,21 @@ pub enum Error {
 
     /// A frame was asked for a buffer it does not make; `known` are those it does.
     #[error("this scene's frame has no buffer `{name}`; it has: {}", known.join(", "))]
-    UnknownBuffer { name: String, known: Vec<String> },
+    UnknownBuffer {
+        /// The buffer asked for.
+        name: String,
+        /// The buffers the frame makes.
+        known: Vec<String>,
+    },
 
     /// A renderer was asked to change light `index`, which it cannot.
     #[error("{message}")]
-    Light { index: usize, message: String },
+    Light {
+        /// The light's index in the scene.
+        index: usize,
+        /// Why.
+        message: String,
+    },
 }
 
 /// Returns `Error::Invalid` for `key`, with the formatted message, unless `cond`

@@ -1,138 +1,58 @@
 //! lumiere: a software scan-line renderer that reproduces the classic rendering
 //! algorithms literally, one module per paper.
 //!
-//! The flow of a frame: a `Scene` (from a TOML scene file or a catalogue entry) is
-//! clipped and projected, swept by the scan-line visible-surface pass (`raster`)
-//! into a visible-surface buffer, shaded (`shading`) with each light weighted by its
-//! visibility term (`shadow`), and box-filtered into a linear radiance `Image`
-//! (`output`), saved as sRGB PNG or linear PFM or EXR.
+//! A [`Scene`] comes from a catalogue entry, a scene file or a TOML string, with the
+//! command line's `key=value` overrides; a [`Renderer`] keeps the view-independent
+//! work of its frames (shadow maps, shadow polygons and volumes, a radiosity
+//! solution) while its camera, lights and shadow settings change; a [`Frame`] holds
+//! the linear radiance [`Image`] and the named buffers a method makes (visibility,
+//! depth, shadow-volume counts, item buffers).
+//!
+//! ```
+//! use lumiere::{Renderer, load_scene};
+//!
+//! // The point-lit Cornell box at 64 x 64, shadowed by Crow's shadow volumes.
+//! let sets = ["camera.width=64", "camera.height=64", "shadows.method=shadow-volumes"];
+//! let renderer = Renderer::new(load_scene("cornell-box-point", &sets.map(String::from))?);
+//! let frame = renderer.render_with_buffers(&["shadow-volume-counts-0".to_string()])?;
+//! let counts = frame.buffer("shadow-volume-counts-0").expect("Crow's counts");
+//! assert_eq!((frame.image.width, counts.width), (64, 64));
+//! # Ok::<(), lumiere::Error>(())
+//! ```
+//!
+//! The flow of a frame: the scene is clipped and projected, swept by Watkins's
+//! scan-line pass in bands of rows into visible samples, each shadowed light's method
+//! answers how much of the light reaches each sample, and shading weighs each light
+//! by that answer; the box filter gives the pixels. Radiosity, Whitted's ray tracing
+//! and the two-pass method are the other integrators over the same passes.
+//!
+//! Everything not re-exported here lives in [`internals`]: the modules themselves,
+//! there for the tests and the command line's instruments, not a stable API.
+
+#![warn(missing_docs)]
 
 pub mod catalogue;
 mod error;
-pub mod geometry;
-pub mod global;
-pub mod image_io;
-pub mod media;
-pub mod radiosity;
-pub mod raster;
-pub mod render;
-pub mod scene;
+pub mod export;
+#[doc(hidden)]
+pub mod internals;
+mod load;
 pub mod settings;
-pub mod shading;
-pub mod shadow;
-pub mod texture;
 
-use scene::resources::{Directory, Layered};
-use std::path::Path;
+// The crate's own paths (`crate::shadow::…`) name the modules behind the API.
+use internals::{
+    geometry, global, image_io, media, radiosity, raster, render, scene, shading, shadow, texture,
+};
 
-pub use error::{Error, FileOp, OverBudget, Result};
-pub use image_io::Image;
-pub use render::render;
-pub use scene::Scene;
-
-/// Loads a scene named by a catalogue id or a path to a `.toml` scene file, with
-/// `key=value` overrides applied in order.
-pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
-    let path = Path::new(spec);
-    let is_file = spec.ends_with(".toml") || path.exists();
-    let (mut table, base_dir) = if is_file {
-        let text =
-            std::fs::read_to_string(path).map_err(|e| Error::io(FileOp::ReadScene, path, e))?;
-        let mut table = scene::tables::parse(&text, spec)?;
-        // A scene file may start from a catalogue entry: `extends = "cornell-box"`.
-        if let Some(base) = table.remove("extends") {
-            let base = base
-                .as_str()
-                .ok_or_else(|| Error::invalid("extends", "`extends` must be a catalogue id"))?;
-            let mut merged = catalogue::entry(base)?.scene;
-            scene::tables::merge(&mut merged, table);
-            table = merged;
-        }
-        (
-            table,
-            path.parent().map(Path::to_path_buf).unwrap_or_default(),
-        )
-    } else {
-        (catalogue::entry(spec)?.scene, Default::default())
-    };
-    // Entries of the named collections the overrides add (collection, name, assignment).
-    let mut added = Vec::new();
-    for assignment in overrides {
-        let before = scene::tables::named_entries(&table);
-        scene::tables::set(&mut table, assignment)?;
-        for (collection, name) in scene::tables::named_entries(&table).difference(&before) {
-            added.push((*collection, name.clone(), assignment.as_str()));
-        }
-    }
-    refuse_unused_textures(&table, &added)?;
-    let catalogue = catalogue::resources();
-    let layered;
-    let resources: &dyn scene::resources::Resources = if is_file {
-        layered = Layered(vec![Box::new(Directory(base_dir)), Box::new(catalogue)]);
-        &layered
-    } else {
-        &catalogue
-    };
-    // The shadow method's own budget, refused before any work.
-    let scene = scene::scene_from_table(table, resources)
-        .and_then(|scene| {
-            (shadow::method(scene.shadows.method).budget)(&scene).map_err(Error::OverBudget)?;
-            Ok(scene)
-        })
-        .map_err(|e| Error::InScene {
-            spec: spec.to_string(),
-            source: Box::new(e),
-        })?;
-    refuse_unused_materials(&scene, &added)?;
-    Ok(scene)
-}
-
-/// A texture an override adds that no material names (a misspelt name) is refused.
-fn refuse_unused_textures(table: &toml::Table, added: &[(&str, String, &str)]) -> Result<()> {
-    let materials = table.get("materials").and_then(toml::Value::as_table);
-    let used = |name: &str| {
-        materials.into_iter().flat_map(|m| m.values()).any(|m| {
-            ["diffuse_texture", "specular_texture", "bump_texture"]
-                .iter()
-                .any(|key| m.get(*key).and_then(toml::Value::as_str) == Some(name))
-        })
-    };
-    for (_, name, assignment) in added.iter().filter(|a| a.0 == "textures") {
-        if !used(name) {
-            let textures = table.get("textures").and_then(toml::Value::as_table);
-            let defined = textures
-                .into_iter()
-                .flat_map(|t| t.keys())
-                .filter(|k| !added.iter().any(|(c, n, _)| *c == "textures" && n == *k));
-            return Err(Error::Override {
-                assignment: assignment.to_string(),
-                message: scene::tables::not_defined("textures", name, defined.map(String::as_str)),
-            });
-        }
-    }
-    Ok(())
-}
-
-/// A material an override adds that no polygon wears (a misspelt name) is refused;
-/// one named like an OBJ file's MTL material replaces it, and is worn.
-fn refuse_unused_materials(scene: &Scene, added: &[(&str, String, &str)]) -> Result<()> {
-    let is_added = |name: &str| added.iter().any(|(c, n, _)| *c == "materials" && n == name);
-    for (_, name, assignment) in added.iter().filter(|a| a.0 == "materials") {
-        let worn = scene
-            .polygons
-            .iter()
-            .any(|p| scene.materials[p.material].name == *name);
-        if !worn {
-            let defined = scene
-                .materials
-                .iter()
-                .map(|m| m.name.as_str())
-                .filter(|n| !is_added(n));
-            return Err(Error::Override {
-                assignment: assignment.to_string(),
-                message: scene::tables::not_defined("materials", name, defined),
-            });
-        }
-    }
-    Ok(())
-}
+pub use error::{Error, FileOp, OverBudget, Result, Unsupported};
+pub use image_io::{
+    Buffer, BufferData, Comparison, Format as ImageFormat, Image, NO_ID, compare as compare_images,
+    decode as decode_image, difference_image, encode as encode_image, load as read_image,
+    remove_unfinished, save as write_image, write_atomically,
+};
+pub use load::{load_scene, scene_from_toml};
+pub use render::{BufferInfo, Frame, Prepasses, Renderer, render};
+pub use scene::{
+    Camera, DistantLight, Light, LightKind, Material, Object, PointLight, Polygon, PolygonLight,
+    Scene, SphereLight, SpotDistribution, SpotLight, Vertex,
+};

@@ -5,7 +5,7 @@ fn main() -> ExitCode {
     // Interrupted (Ctrl-C, SIGTERM): no temporary file or staging directory is left
     // behind, and the status says so (128 + SIGINT).
     let _ = ctrlc::set_handler(|| {
-        lumiere::image_io::remove_unfinished();
+        lumiere::remove_unfinished();
         std::process::exit(130);
     });
     let cli = match lumiere_cli::Cli::try_parse() {

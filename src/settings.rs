@@ -18,6 +18,7 @@ pub enum ShadingMode {
 /// Settings of a render that are not geometry.
 #[derive(Clone, Debug)]
 pub struct RenderSettings {
+    /// How colour varies across a polygon.
     pub shading: ShadingMode,
     /// Radiance is multiplied by this before sRGB encoding (PNG output only).
     pub exposure: f32,
@@ -80,8 +81,11 @@ pub enum ShadowMethod {
 /// How shadows are made (`[shadows]` in the scene file).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShadowSettings {
+    /// The method.
     pub method: ShadowMethod,
+    /// Shadow map: texels along each side of each cube face.
     pub map_resolution: u32,
+    /// Shadow map: depth bias in slope-scaled texels.
     pub map_bias: f64,
     /// Shadow map: how its depth tests are filtered.
     pub map_filter: MapFilter,
@@ -89,6 +93,7 @@ pub struct ShadowSettings {
     pub pcf: u32,
     /// Shadow map: Reeves, Salesin & Cook's filter.
     pub percentage_closer: PercentageCloser,
+    /// Shadow map: Williams's post-pass, applied to the finished image.
     pub post_pass: bool,
     /// Appel's self-shadow rule: a sample whose surface faces away from the light is
     /// dark whatever the method finds (off: each method's own answer shows).
@@ -221,8 +226,11 @@ pub enum Display {
 /// along each side, or a fixed number of pieces along each side.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Division {
+    /// The polygon whole.
     Whole,
+    /// Pieces no longer than this along each side.
     Size(f64),
+    /// This many pieces along each side.
     Count(u32),
 }
 
@@ -230,27 +238,35 @@ pub enum Division {
 /// the largest reflected radiosity, for at most `levels` rounds.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Subdivision {
+    /// The difference, a fraction of the largest reflected radiosity.
     pub threshold: f64,
+    /// The most rounds of cutting.
     pub levels: u32,
 }
 
 /// A scene's `[radiosity]` settings.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RadiositySettings {
+    /// Gathering (Gauss–Seidel) or shooting.
     pub solver: Solver,
+    /// How form factors are estimated.
     pub form_factors: FormFactorMethod,
     /// Hemi-cube top-face cells per side (Nusselt: base-grid cells per side).
     pub resolution: u32,
+    /// How polygons are cut into patches (shooters).
     pub patches: Division,
+    /// How patches are cut into elements (receivers).
     pub elements: Division,
     /// Gathering: Gauss–Seidel stops when no radiosity changes by more than this
     /// fraction of the largest.
     pub tolerance: f64,
     /// Shooting: stop when the unshot power is this fraction of the emitted power.
     pub unshot: f64,
+    /// Shooting: stop after this many steps.
     pub max_steps: usize,
     /// Shooting: display with the ambient term.
     pub ambient: bool,
+    /// Flat or Gouraud-interpolated radiosities.
     pub display: Display,
     /// Gathering: the most memory its stored form factors may take, in bytes.
     pub memory_budget: u64,
@@ -290,11 +306,13 @@ pub struct MediumSettings {
     pub extinction: f64,
     /// Scattering albedo σ_s / σ_t, in [0, 1].
     pub albedo: f64,
+    /// The phase function.
     pub phase: PhaseFunction,
     /// Henyey–Greenstein's asymmetry g, in (−1, 1).
     pub g: f64,
     /// The box the medium fills (min, max corners); `None`: everywhere.
     pub extent: Option<([f64; 3], [f64; 3])>,
+    /// Ray marching or Max's lit intervals.
     pub method: MediumMethod,
     /// Light volumes under point and spot lights: Gauss–Legendre nodes per piece of
     /// a lit interval.
@@ -359,6 +377,7 @@ pub struct Mechanisms {
 }
 
 impl Mechanisms {
+    /// Every mechanism.
     pub const ALL: Mechanisms = Mechanisms {
         diffuse_diffuse: true,
         specular_diffuse: true,
@@ -383,6 +402,7 @@ pub enum SpecularWeights {
 /// A scene's `[global]` settings.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GlobalSettings {
+    /// Whitted's ray tracing or a two-pass method.
     pub method: GlobalMethod,
     /// Longest chain of reflected and refracted rays from the eye.
     pub depth: u32,
@@ -395,9 +415,11 @@ pub struct GlobalSettings {
     /// Corners differ when a displayed channel (exposure applied, clamped to
     /// [0, 1]) differs by more than this.
     pub contrast: f64,
+    /// Constant or Fresnel weights.
     pub weights: SpecularWeights,
     /// Pass 1: mirror-of-mirror (and pane) paths followed to this depth.
     pub window_depth: u32,
+    /// The transfer mechanisms pass 2 follows.
     pub mechanisms: Mechanisms,
     /// Pass 2: direct light from emitting polygons computed per sample (the
     /// shadow method's exact visible part, Lambert's formula) instead of read from

@@ -87,7 +87,7 @@ fn renders_a_catalogue_entry_from_any_directory() {
             dir.path(),
         );
         assert_eq!(run.code, 0, "{}", run.stderr);
-        let image = lumiere::image_io::load(&dir.path().join(name)).unwrap();
+        let image = lumiere::read_image(&dir.path().join(name)).unwrap();
         assert_eq!((image.width, image.height), (24, 20));
     }
     let compare = lumiere(
@@ -113,8 +113,8 @@ fn exr_and_pfm_hold_the_same_linear_image() {
         );
         assert_eq!(run.code, 0, "{}", run.stderr);
     }
-    let exr = lumiere::image_io::load(&dir.path().join("c.exr")).unwrap();
-    let pfm = lumiere::image_io::load(&dir.path().join("c.pfm")).unwrap();
+    let exr = lumiere::read_image(&dir.path().join("c.exr")).unwrap();
+    let pfm = lumiere::read_image(&dir.path().join("c.pfm")).unwrap();
     assert_eq!((exr.width, exr.height), (128, 128));
     assert_eq!(exr, pfm);
     let compare = lumiere(&["compare", "c.exr", "c.pfm", "--json"], dir.path());
@@ -146,7 +146,7 @@ fn renders_a_scene_file_with_overrides() {
         dir.path(),
     );
     assert_eq!(run.code, 0, "{}", run.stderr);
-    let image = lumiere::image_io::load(&dir.path().join("s.png")).unwrap();
+    let image = lumiere::read_image(&dir.path().join("s.png")).unwrap();
     assert_eq!((image.width, image.height), (10, 12));
 }
 
@@ -521,7 +521,7 @@ fn shadow_methods_and_the_visibility_buffer() {
         ];
         let run = lumiere(&args, dir.path());
         assert_eq!(run.code, 0, "{method}: {}", run.stderr);
-        let image = lumiere::image_io::load(&dir.path().join("v.png")).unwrap();
+        let image = lumiere::read_image(&dir.path().join("v.png")).unwrap();
         // White where lit, black in shadow: both occur.
         assert!(
             image.pixels.iter().any(|p| p.x == 1.0) && image.pixels.iter().any(|p| p.x == 0.0),
@@ -594,7 +594,7 @@ fn a_scene_file_extends_a_catalogue_entry() {
     let dir = workspace(&[("mine.toml", text)]);
     let run = lumiere(&["render", "mine.toml", "-o", "m.png"], dir.path());
     assert_eq!(run.code, 0, "{}", run.stderr);
-    let image = lumiere::image_io::load(&dir.path().join("m.png")).unwrap();
+    let image = lumiere::read_image(&dir.path().join("m.png")).unwrap();
     assert_eq!((image.width, image.height), (20, 20));
     // The wall on the left, red in the entry, is blue here.
     let left = image.pixels[10 * 20 + 1];
@@ -980,7 +980,7 @@ fn five_kinds_of_light_render() {
             dir.path(),
         );
         assert_eq!(run.code, 0, "{method}: {}", run.stderr);
-        let image = lumiere::image_io::load(&dir.path().join("o.png")).unwrap();
+        let image = lumiere::read_image(&dir.path().join("o.png")).unwrap();
         assert!(image.pixels.iter().any(|p| p.x > 0.0), "{method}: black");
     }
 }
@@ -1156,13 +1156,13 @@ fn buffers_as_outputs() {
     ] {
         assert!(written(file).exists(), "{file}");
     }
-    let depth = lumiere::image_io::load(&written("depth.pfm")).unwrap();
+    let depth = lumiere::read_image(&written("depth.pfm")).unwrap();
     assert_eq!((depth.width, depth.height), (24, 18));
-    let map = lumiere::image_io::load(&written("shadow-map-0-py.pfm")).unwrap();
+    let map = lumiere::read_image(&written("shadow-map-0-py.pfm")).unwrap();
     assert_eq!((map.width, map.height), (1024, 1024));
     let run = lumiere(&base(&["--aov", "polygon", "-o", "ids.pfm"]), dir.path());
     assert_eq!(run.code, 0, "{}", run.stderr);
-    let ids = lumiere::image_io::load(&dir.path().join("ids.pfm")).unwrap();
+    let ids = lumiere::read_image(&dir.path().join("ids.pfm")).unwrap();
     // The numbers themselves: polygon ids, -1 where nothing is seen.
     assert!(ids.pixels.iter().all(|p| p.x == p.x.round() && p.x >= -1.0));
     let run = lumiere(
@@ -1857,7 +1857,7 @@ fn soft_shadow_buffers() {
         dir.path(),
     );
     assert_eq!(run.code, 0, "{}", run.stderr);
-    let blocked = lumiere::image_io::load(&dir.path().join("b.pfm")).unwrap();
+    let blocked = lumiere::read_image(&dir.path().join("b.pfm")).unwrap();
     // Counts of 0 to 4 hidden points, every one of them somewhere.
     let mut seen = [false; 5];
     for p in &blocked.pixels {
@@ -1939,7 +1939,7 @@ fn medium_buffers() {
         dir.path(),
     );
     assert_eq!(run.code, 0, "{}", run.stderr);
-    let lit = lumiere::image_io::load(&dir.path().join("l.pfm")).unwrap();
+    let lit = lumiere::read_image(&dir.path().join("l.pfm")).unwrap();
     // One lit interval for most rays, two for those passing through the ball's shadow.
     let ones = lit.pixels.iter().filter(|p| p.x == 1.0).count();
     let twos = lit.pixels.iter().filter(|p| p.x == 2.0).count();
@@ -1980,7 +1980,7 @@ fn envmap_captures_a_scene_and_converts_between_layouts() {
             dir.path(),
         );
         assert_eq!(run.code, 0, "{}", run.stderr);
-        let out = lumiere::image_io::load(&dir.path().join("out.pfm")).unwrap();
+        let out = lumiere::read_image(&dir.path().join("out.pfm")).unwrap();
         assert_eq!((out.width, out.height), size);
     }
     // A scene naming the written cross renders with it.

@@ -10,10 +10,10 @@ mod common;
 use common::scene_from_text;
 use glam::{DVec3, Vec3};
 use lumiere::Scene;
-use lumiere::raster::sample_view;
-use lumiere::render::{Renderer, capture};
-use lumiere::scene::ray_queries::SceneRays;
-use lumiere::shading::radiance_at;
+use lumiere::internals::raster::sample_view;
+use lumiere::internals::render::{Renderer, capture};
+use lumiere::internals::scene::ray_queries::SceneRays;
+use lumiere::internals::shading::radiance_at;
 
 /// A room of half-size `half` around a unit mirror ball at the origin: each wall a
 /// 4 × 4 checker of two diffuse colours (its own pair per wall), lit by a point light

@@ -5,7 +5,7 @@
 
 mod common;
 
-use lumiere::image_io;
+use lumiere::internals::image_io;
 use std::path::Path;
 use std::process::Command;
 

@@ -10,7 +10,7 @@
 mod common;
 
 use common::flip;
-use lumiere::image_io::{self, Image};
+use lumiere::internals::image_io::{self, Image};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

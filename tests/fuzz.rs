@@ -7,8 +7,8 @@
 //! found). Coverage-guided fuzzing (cargo-fuzz) needs a nightly toolchain; these
 //! harnesses drive the same entry points with proptest's generators instead.
 
-use lumiere::image_io::{self, Format};
-use lumiere::scene::{scene_from_table, tables};
+use lumiere::internals::image_io::{self, Format};
+use lumiere::internals::scene::{scene_from_table, tables};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 
@@ -262,7 +262,7 @@ fn an_exr_declaring_a_huge_block_is_refused_from_its_header() {
         error.contains("larger than 16384 on a side") || error.contains("a block of this image"),
         "{error}"
     );
-    assert!(lumiere::texture::Texels::decode(bytes).is_err());
+    assert!(lumiere::internals::texture::Texels::decode(bytes).is_err());
 }
 
 /// An MTL file's `map_Kd` is loaded (relative to the OBJ file) and scales its

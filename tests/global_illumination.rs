@@ -8,12 +8,12 @@ mod common;
 
 use common::scene_from_text;
 use glam::DVec3;
-use lumiere::geometry::lambert_contour::form_factor;
-use lumiere::radiosity::extended::{self, Extension};
-use lumiere::radiosity::hemicube::Hemicube;
-use lumiere::radiosity::receivers::Receivers;
-use lumiere::radiosity::windows::{Follow, Windows};
-use lumiere::radiosity::{Division, Estimator, FormFactorMethod, Mesh};
+use lumiere::internals::geometry::lambert_contour::form_factor;
+use lumiere::internals::radiosity::extended::{self, Extension};
+use lumiere::internals::radiosity::hemicube::Hemicube;
+use lumiere::internals::radiosity::receivers::Receivers;
+use lumiere::internals::radiosity::windows::{Follow, Windows};
+use lumiere::internals::radiosity::{Division, Estimator, FormFactorMethod, Mesh};
 use lumiere::settings::Mechanisms;
 use lumiere::{Scene, render};
 
@@ -507,7 +507,7 @@ fn two_rooms_by_hand(tau: f64) -> Vec<f64> {
 fn two_rooms_by_lumiere(tau: f64) -> Vec<f64> {
     let scene = two_rooms(tau);
     let settings = scene.radiosity.clone().unwrap();
-    let mesh = lumiere::radiosity::mesh(&scene, &settings).unwrap();
+    let mesh = lumiere::internals::radiosity::mesh(&scene, &settings).unwrap();
     let estimator = Estimator::new(FormFactorMethod::Hemicube, settings.resolution, &scene);
     let extension = extension_of(&scene);
     let solved = extended::gather(&scene, &mesh, &estimator, extension, 1e-9, u64::MAX).unwrap();
@@ -549,7 +549,7 @@ fn two_rooms_by_lumiere(tau: f64) -> Vec<f64> {
 /// The scene's first-pass extension, or Rushmeier & Torrance's with nothing to
 /// follow (the same solver on a scene without specular surfaces).
 fn extension_of(scene: &Scene) -> Extension {
-    lumiere::radiosity::extension(scene).unwrap_or(Extension {
+    lumiere::internals::radiosity::extension(scene).unwrap_or(Extension {
         follow: Follow {
             mirrors: true,
             panes: true,
@@ -664,7 +664,7 @@ fn a_closed_room_balances_emitted_and_absorbed_power() {
         text += "[[objects]]\nshape = \"box\"\nname = \"panel\"\nmaterial = \"panel\"\ntransform = [{ scale = [0.5, 0.01, 0.5] }, { translate = [0.5, 0.7, 0.4] }]\n";
         let scene = scene_from_text(&text, &[]);
         let settings = scene.radiosity.clone().unwrap();
-        let mesh = lumiere::radiosity::mesh(&scene, &settings).unwrap();
+        let mesh = lumiere::internals::radiosity::mesh(&scene, &settings).unwrap();
         let estimator = Estimator::new(FormFactorMethod::Hemicube, settings.resolution, &scene);
         let extension = extension_of(&scene);
         let terms = extended::element_terms(&scene, &mesh, &estimator, extension).unwrap();
@@ -734,7 +734,7 @@ fn the_reflected_spot_is_lit_by_the_mirrored_lamp_times_the_mirror_reflectance()
         );
         let scene = scene_from_text(&text, &[]);
         let settings = scene.radiosity.clone().unwrap();
-        let mesh = lumiere::radiosity::mesh(&scene, &settings).unwrap();
+        let mesh = lumiere::internals::radiosity::mesh(&scene, &settings).unwrap();
         let estimator = Estimator::new(FormFactorMethod::Hemicube, settings.resolution, &scene);
         let solved = extended::gather(
             &scene,

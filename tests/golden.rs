@@ -14,7 +14,7 @@
 mod common;
 
 use libtest_mimic::{Arguments, Failed, Trial};
-use lumiere::image_io::{self, Image};
+use lumiere::internals::image_io::{self, Image};
 use lumiere::{catalogue, load_scene};
 use std::path::{Path, PathBuf};
 

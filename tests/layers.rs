@@ -2,7 +2,8 @@
 //! (image input and output) → texture → scene → raster → shadow, shading,
 //! radiosity, media (siblings) → global (ray tracing and the two-pass method's
 //! second pass, over shading's light model and radiosity's solution) → render →
-//! catalogue → the command line and the crate root. A module names only modules
+//! catalogue and export → the loader → the command line, the crate root and its
+//! internals. A module names only modules
 //! below its own layer (and its own): read from the sources, every `crate::` path
 //! checked. Inside a folder, the files import one another without a circle.
 
@@ -19,8 +20,9 @@ fn layer(module: &str) -> Option<u32> {
         "shadow" | "shading" | "radiosity" | "media" => 6,
         "global" => 7,
         "render" => 8,
-        "catalogue" => 9,
-        "cli" | "main" | "lib" => 10,
+        "catalogue" | "export" => 9,
+        "load" => 10,
+        "cli" | "main" | "lib" | "internals" => 11,
         _ => return None,
     })
 }
@@ -30,7 +32,7 @@ fn layer(module: &str) -> Option<u32> {
 /// root stands at the top of the tree only.
 fn module_of(name: &str) -> &str {
     match name {
-        "load_scene" => "lib",
+        "load_scene" | "scene_from_toml" => "lib",
         module => module,
     }
 }

@@ -7,9 +7,9 @@
 mod common;
 
 use glam::{DVec3, Vec3};
-use lumiere::media::single_scattering::{Scattering, phase, point_integrand};
-use lumiere::render::visible_surface;
-use lumiere::shadow::light_volumes::LightVolumes;
+use lumiere::internals::media::single_scattering::{Scattering, phase, point_integrand};
+use lumiere::internals::render::visible_surface;
+use lumiere::internals::shadow::light_volumes::LightVolumes;
 use lumiere::{Image, Scene, load_scene};
 
 fn scene_with(spec: &str, sets: &[&str]) -> Scene {
@@ -90,13 +90,13 @@ fn under_an_open_sky_the_closed_form() {
     let (view, surface) = visible_surface(&scene);
     let volumes = LightVolumes::new(&scene, &scene.lights[0]).unwrap();
     let lit = volumes.frame(&scene, &view).band(&surface, 1e3);
-    let lumiere::scene::Light::Distant(sun) = &scene.lights[0] else {
+    let lumiere::Light::Distant(sun) = &scene.lights[0] else {
         panic!("a distant light");
     };
     let scattering = Scattering::new(&medium);
     let mut checked = 0;
     for k in 0..surface.samples.len() {
-        let (direction, length) = lumiere::media::viewing_ray(&view, &surface, k, 1e3);
+        let (direction, length) = lumiere::internals::media::viewing_ray(&view, &surface, k, 1e3);
         assert_eq!(lit.of(k), &[[0.0, length]], "sample {k}");
         let found = scattering.inscattered(&scene.lights[0], view.eye, direction, lit.of(k));
         let (st, ss) = (medium.extinction, medium.scattering());
@@ -252,16 +252,17 @@ fn under_the_sun_shadow_volumes_are_ray_casting() {
         &["camera.width=128", "camera.height=96"],
     );
     let (view, surface) = visible_surface(&scene);
-    let fractions = |method| match lumiere::shadow::compute(&scene, &view, &surface, method)
-        .unwrap()
-        .per_light
-        .remove(0)
-    {
-        Some(lumiere::raster::LightVisibility::Fraction(f)) => f,
-        _ => panic!("a fraction"),
-    };
-    let crow = fractions(lumiere::shadow::ShadowMethod::ShadowVolumes);
-    let cast = fractions(lumiere::shadow::ShadowMethod::RayCast);
+    let fractions =
+        |method| match lumiere::internals::shadow::compute(&scene, &view, &surface, method)
+            .unwrap()
+            .per_light
+            .remove(0)
+        {
+            Some(lumiere::internals::raster::LightVisibility::Fraction(f)) => f,
+            _ => panic!("a fraction"),
+        };
+    let crow = fractions(lumiere::settings::ShadowMethod::ShadowVolumes);
+    let cast = fractions(lumiere::settings::ShadowMethod::RayCast);
     let lit = cast.iter().filter(|&&v| v == 1.0).count();
     let differing = crow.iter().zip(&cast).filter(|(a, b)| a != b).count();
     assert!(lit > 100, "{lit} sunlit samples");

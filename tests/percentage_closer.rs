@@ -10,15 +10,17 @@
 mod common;
 
 use glam::{DVec2, DVec3};
-use lumiere::geometry::sampling::Stream;
+use lumiere::internals::geometry::sampling::Stream;
+use lumiere::internals::raster::View;
+use lumiere::internals::render::visible_surface;
+use lumiere::internals::scene::{Camera, Scene};
+use lumiere::internals::shadow::percentage_closer::{
+    MAX_FOOTPRINT, Region, footprint, percentage_closer,
+};
+use lumiere::internals::shadow::shadow_map::{CubeShadowMap, DepthImage, Lookup, MapPoint};
 use lumiere::load_scene;
-use lumiere::raster::View;
-use lumiere::render::visible_surface;
-use lumiere::scene::{Camera, Scene};
+use lumiere::settings::ShadowMethod;
 use lumiere::settings::{MapFilter, PercentageCloser};
-use lumiere::shadow::ShadowMethod;
-use lumiere::shadow::percentage_closer::{MAX_FOOTPRINT, Region, footprint, percentage_closer};
-use lumiere::shadow::shadow_map::{CubeShadowMap, DepthImage, Lookup, MapPoint};
 
 /// Stored depths: a texel in front of the tested point (it shadows) and one behind.
 const NEAR: f32 = 0.25;
@@ -429,7 +431,8 @@ fn strip_scene(shadows: &[&str]) -> Scene {
 /// each column: (x, mean).
 fn ground_profile(scene: &Scene) -> Vec<(f64, f64)> {
     let (view, surface) = visible_surface(scene);
-    let v = lumiere::shadow::compute(scene, &view, &surface, ShadowMethod::ShadowMap).unwrap();
+    let v = lumiere::internals::shadow::compute(scene, &view, &surface, ShadowMethod::ShadowMap)
+        .unwrap();
     let ground = scene
         .objects
         .iter()
@@ -525,15 +528,19 @@ fn footprints_antialias_like_area_sampled_ray_casting() {
     let reference = load_scene("ray-cast-shadows-curved", &fine).unwrap();
     let (_, fine_surface) = visible_surface(&reference);
     let (fine_view, _) = visible_surface(&reference);
-    let exact =
-        lumiere::shadow::compute(&reference, &fine_view, &fine_surface, ShadowMethod::RayCast)
-            .unwrap();
+    let exact = lumiere::internals::shadow::compute(
+        &reference,
+        &fine_view,
+        &fine_surface,
+        ShadowMethod::RayCast,
+    )
+    .unwrap();
     let ground = reference
         .objects
         .iter()
         .position(|o| o.name == "ground")
         .unwrap();
-    let on_ground = |s: &lumiere::raster::Sample| {
+    let on_ground = |s: &lumiere::internals::raster::Sample| {
         !s.is_empty() && reference.polygons[s.polygon as usize].object == ground
     };
     let filtered = |filter: &str| {
@@ -546,7 +553,9 @@ fn footprints_antialias_like_area_sampled_ray_casting() {
         ]);
         let scene = load_scene("ray-cast-shadows-curved", &sets).unwrap();
         let (view, surface) = visible_surface(&scene);
-        let v = lumiere::shadow::compute(&scene, &view, &surface, ShadowMethod::ShadowMap).unwrap();
+        let v =
+            lumiere::internals::shadow::compute(&scene, &view, &surface, ShadowMethod::ShadowMap)
+                .unwrap();
         (0..surface.samples.len())
             .map(|k| v.fraction(0, k) as f64)
             .collect::<Vec<f64>>()

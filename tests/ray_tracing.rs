@@ -9,23 +9,23 @@ mod common;
 
 use common::{error_line, scene_from_text};
 use glam::{DMat3, DVec3, Vec3};
+use lumiere::BufferData;
+use lumiere::Renderer;
 use lumiere::Scene;
-use lumiere::global::TracedScene;
-use lumiere::global::traced_scene::{Leaving, SurfaceHit};
-use lumiere::global::whitted::{Whitted, reflected_direction, refracted_direction};
-use lumiere::image_io::BufferData;
-use lumiere::raster::View;
-use lumiere::render::Renderer;
+use lumiere::internals::global::TracedScene;
+use lumiere::internals::global::traced_scene::{Leaving, SurfaceHit};
+use lumiere::internals::global::whitted::{Whitted, reflected_direction, refracted_direction};
+use lumiere::internals::raster::View;
+use lumiere::internals::shading::optics;
 use lumiere::settings::GlobalSettings;
-use lumiere::shading::optics;
 use proptest::prelude::*;
 
 /// `[global]` settings of the ray tracer, from the lines of a scene file's section
 /// (validated as a scene file's are).
 fn global(lines: &str) -> GlobalSettings {
     let text = format!("method = \"ray-tracing\"\n{lines}");
-    let file: lumiere::scene::file::GlobalFile = toml::from_str(&text).unwrap();
-    lumiere::scene::global_settings::from_file(&file)
+    let file: lumiere::internals::scene::file::GlobalFile = toml::from_str(&text).unwrap();
+    lumiere::internals::scene::global_settings::from_file(&file)
         .unwrap_or_else(|e| panic!("{}", error_line(&e)))
 }
 
@@ -815,7 +815,7 @@ fn whitted_shadows_equal_ray_cast_shadows() {
             let (origin, direction) = view.ray_through(cx, cy);
             let hit = traced.closest(origin, direction.normalize(), f64::INFINITY, Leaving::Eye);
             let polygon = hit.and_then(|h| h.polygon);
-            let scan = (ids[k] != lumiere::image_io::NO_ID).then_some(ids[k]);
+            let scan = (ids[k] != lumiere::NO_ID).then_some(ids[k]);
             if polygon != scan {
                 other_polygon.push((i, j));
                 continue;

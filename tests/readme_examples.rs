@@ -1,15 +1,18 @@
-//! Every `lumiere …` example in the README's shell blocks runs as written, in order,
-//! in a fresh directory (beside a `golden/` like the checkout's, and a `my-scene.toml`
-//! standing for the user's own scene), and succeeds.
+//! Every `lumiere …` example in the shell blocks of the README and the pages beside it
+//! (BENCHMARKS.md, docs/*.md, docs/topics/*.md) runs as written, in order, and
+//! succeeds. Each page's examples run in a fresh directory of their own (beside a
+//! `golden/` like the checkout's, and a `my-scene.toml` standing for the user's own
+//! scene), so an example may read only what an earlier example of its page wrote.
 
-use std::path::Path;
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// The `lumiere` command lines of the README's ```sh blocks, comments removed.
-fn examples(readme: &str) -> Vec<String> {
+/// The `lumiere` command lines of a page's ```sh blocks, comments removed.
+fn examples(page: &str) -> Vec<String> {
     let mut inside = false;
     let mut lines = Vec::new();
-    for line in readme.lines() {
+    for line in page.lines() {
         if line.starts_with("```") {
             inside = line == "```sh";
             continue;
@@ -24,6 +27,27 @@ fn examples(readme: &str) -> Vec<String> {
     }
     lines
 }
+
+/// The pages whose examples run: README.md first, then BENCHMARKS.md, docs/*.md and
+/// docs/topics/*.md, sorted by path.
+fn documented_pages(root: &Path) -> Vec<PathBuf> {
+    let mut pages = vec![root.join("BENCHMARKS.md")];
+    for dir in ["docs", "docs/topics"] {
+        for entry in std::fs::read_dir(root.join(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension() == Some(OsStr::new("md")) {
+                pages.push(path);
+            }
+        }
+    }
+    pages.sort();
+    pages.insert(0, root.join("README.md"));
+    pages
+}
+
+/// How many examples the pages hold (the README held them all before its topics had
+/// pages of their own): fewer found means some were lost on the way.
+const EXAMPLES: usize = 29;
 
 const MY_SCENE: &str = r#"
 [camera]
@@ -47,33 +71,45 @@ material = "grey"
 "#;
 
 #[test]
-fn every_readme_example_runs_as_written() {
+fn every_documented_example_runs_as_written() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
-    let examples = examples(&readme);
-    assert!(examples.len() >= 20, "found {} examples", examples.len());
-    let dir = tempfile::tempdir().unwrap();
-    std::os::unix::fs::symlink(root.join("golden"), dir.path().join("golden")).unwrap();
-    std::fs::write(dir.path().join("my-scene.toml"), MY_SCENE).unwrap();
+    let pages: Vec<(PathBuf, Vec<String>)> = documented_pages(root)
+        .into_iter()
+        .map(|page| {
+            let examples = examples(&std::fs::read_to_string(&page).unwrap());
+            (page, examples)
+        })
+        .collect();
+    let count: usize = pages.iter().map(|(_, examples)| examples.len()).sum();
+    assert!(count >= EXAMPLES, "found {count} examples");
     let binary = Path::new(env!("CARGO_BIN_EXE_lumiere"));
     let path = format!(
         "{}:{}",
         binary.parent().unwrap().display(),
         std::env::var("PATH").unwrap_or_default()
     );
-    for example in &examples {
-        let out = Command::new("sh")
-            .arg("-c")
-            .arg(example)
-            .current_dir(dir.path())
-            .env("PATH", &path)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "`{example}` failed ({}): {}",
-            out.status,
-            String::from_utf8_lossy(&out.stderr)
-        );
+    for (page, examples) in &pages {
+        if examples.is_empty() {
+            continue;
+        }
+        let page = page.strip_prefix(root).unwrap().display();
+        let dir = tempfile::tempdir().unwrap();
+        std::os::unix::fs::symlink(root.join("golden"), dir.path().join("golden")).unwrap();
+        std::fs::write(dir.path().join("my-scene.toml"), MY_SCENE).unwrap();
+        for example in examples {
+            let out = Command::new("sh")
+                .arg("-c")
+                .arg(example)
+                .current_dir(dir.path())
+                .env("PATH", &path)
+                .output()
+                .unwrap();
+            assert!(
+                out.status.success(),
+                "`{example}` ({page}) failed ({}): {}",
+                out.status,
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
     }
 }

@@ -10,18 +10,18 @@
 mod common;
 
 use glam::{DVec2, DVec3, Vec3};
-use lumiere::geometry::central_projection::onto_plane;
-use lumiere::geometry::disc::area_inside;
-use lumiere::geometry::sampling::Stream;
-use lumiere::raster::{LightVisibility, View, Visibility, VisibleSurface};
-use lumiere::render::visible_surface;
-use lumiere::scene::{Light, SphereLight};
+use lumiere::internals::geometry::central_projection::onto_plane;
+use lumiere::internals::geometry::disc::area_inside;
+use lumiere::internals::geometry::sampling::Stream;
+use lumiere::internals::raster::{LightVisibility, View, Visibility, VisibleSurface};
+use lumiere::internals::render::visible_surface;
+use lumiere::internals::scene::{Light, SphereLight};
+use lumiere::internals::shading::FrameShading;
+use lumiere::internals::shadow::jittered_soft_shadows::JitteredSoftShadows;
+use lumiere::internals::shadow::shadow_volumes::ShadowVolumes;
+use lumiere::internals::shadow::soft_shadow_volumes::SoftShadowVolumes;
+use lumiere::internals::shadow::{self, LightShadows, SceneOccluders, ShadowMethod};
 use lumiere::settings::{CellSampling, ShadowSettings};
-use lumiere::shading::FrameShading;
-use lumiere::shadow::jittered_soft_shadows::JitteredSoftShadows;
-use lumiere::shadow::shadow_volumes::ShadowVolumes;
-use lumiere::shadow::soft_shadow_volumes::SoftShadowVolumes;
-use lumiere::shadow::{self, LightShadows, SceneOccluders, ShadowMethod};
 use lumiere::{Scene, load_scene};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -319,7 +319,7 @@ fn averaged_over_seeds_jitter_is_unbiased_behind_a_straight_edge() {
         radiance: Vec3::ONE,
         name: None,
     };
-    let plate = lumiere::scene::Polygon {
+    let plate = lumiere::internals::scene::Polygon {
         vertices: [
             DVec3::new(0.15, 5.0, -50.0),
             DVec3::new(0.15, 5.0, 50.0),

@@ -8,9 +8,9 @@ mod common;
 use common::scene_from_text;
 use glam::{DVec2, DVec3};
 use lumiere::Scene;
-use lumiere::scene::ray_queries::segment_meets_polygon;
-use lumiere::shadow::shadow_polygon_areas::receiver_shadows;
-use lumiere::shadow::shadow_polygons::{DetailPolygon, lit_polygons};
+use lumiere::internals::scene::ray_queries::segment_meets_polygon;
+use lumiere::internals::shadow::shadow_polygon_areas::receiver_shadows;
+use lumiere::internals::shadow::shadow_polygons::{DetailPolygon, lit_polygons};
 use proptest::prelude::*;
 
 /// A scene of the given polygons, each its own object, and one point light.

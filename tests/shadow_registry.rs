@@ -4,10 +4,10 @@
 //! count buffer is the one its frames give; the registry lists every method.
 
 use lumiere::Error;
-use lumiere::render::Renderer;
-use lumiere::scene::LightKind;
+use lumiere::LightKind;
+use lumiere::Renderer;
+use lumiere::internals::shadow::{METHODS, method};
 use lumiere::settings::ShadowMethod;
-use lumiere::shadow::{METHODS, method};
 
 /// One light of each kind, as a scene file writes it.
 fn light(kind: LightKind) -> &'static str {

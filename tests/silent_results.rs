@@ -1,8 +1,8 @@
 //! Results a user would otherwise get in silence: a black image from a scene with
 //! nothing to see or nothing to light it, an output file that was read-only.
 
-use lumiere::image_io::{self, Image};
-use lumiere::scene::{scene_from_table, tables};
+use lumiere::internals::image_io::{self, Image};
+use lumiere::internals::scene::{scene_from_table, tables};
 
 mod common;
 use common::Files;

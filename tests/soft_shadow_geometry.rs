@@ -5,15 +5,15 @@
 //! another way: brute-force containment, Weiler–Atherton, Monte Carlo, closed forms.
 
 use glam::{DVec2, DVec3};
-use lumiere::geometry::central_projection::onto_plane;
-use lumiere::geometry::convex::{hull, intersect, is_convex_ccw};
-use lumiere::geometry::disc::area_inside;
-use lumiere::geometry::lambert_contour::projected_solid_angle;
-use lumiere::geometry::sutherland_hodgman::clip as clip_half;
-use lumiere::geometry::weiler_atherton::{self as wa, contour_area};
+use lumiere::internals::geometry::central_projection::onto_plane;
+use lumiere::internals::geometry::convex::{hull, intersect, is_convex_ccw};
+use lumiere::internals::geometry::disc::area_inside;
+use lumiere::internals::geometry::lambert_contour::projected_solid_angle;
+use lumiere::internals::geometry::sutherland_hodgman::clip as clip_half;
+use lumiere::internals::geometry::weiler_atherton::{self as wa, contour_area};
+use lumiere::internals::shadow::jittered_soft_shadows::{cells, hexagon};
+use lumiere::internals::shadow::umbra_penumbra::{subtract_convex, visible_part_everywhere};
 use lumiere::load_scene;
-use lumiere::shadow::jittered_soft_shadows::{cells, hexagon};
-use lumiere::shadow::umbra_penumbra::{subtract_convex, visible_part_everywhere};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
 
@@ -871,7 +871,7 @@ proptest! {
         let path = dir.path().join("plate.toml");
         std::fs::write(&path, text).unwrap();
         let scene = load_scene(path.to_str().unwrap(), &[]).unwrap();
-        let lumiere::scene::Light::Polygon(l) = &scene.lights[0] else {
+        let lumiere::Light::Polygon(l) = &scene.lights[0] else {
             panic!("a polygon light");
         };
         prop_assert!((l.normal - DVec3::NEG_Y).length() < 1e-12, "the light faces {}", l.normal);

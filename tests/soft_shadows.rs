@@ -6,9 +6,9 @@
 //! contour formula on it.
 
 use glam::DVec3;
-use lumiere::geometry::lambert_contour::projected_solid_angle;
-use lumiere::render::visible_surface;
-use lumiere::shadow::ShadowMethod;
+use lumiere::internals::geometry::lambert_contour::projected_solid_angle;
+use lumiere::internals::render::visible_surface;
+use lumiere::settings::ShadowMethod;
 
 const SCENE: &str = r#"
 [camera]
@@ -102,7 +102,8 @@ fn errors(samples: u32) -> (f64, f64, usize) {
     let (scene, floor) = soft_scene(samples);
     let (view, surface) = visible_surface(&scene);
     let visibility =
-        lumiere::shadow::compute(&scene, &view, &surface, ShadowMethod::RayCast).unwrap();
+        lumiere::internals::shadow::compute(&scene, &view, &surface, ShadowMethod::RayCast)
+            .unwrap();
     let (mut sum, mut count, mut outside) = (0.0, 0, 0.0f64);
     for (k, s) in surface.samples.iter().enumerate() {
         if s.is_empty() || scene.polygons[s.polygon as usize].object != floor {
@@ -149,8 +150,8 @@ fn the_sampled_penumbra_converges_to_the_exact_one() {
 /// unshadowed radiance times the visible share of Lambert's contour integral.
 #[test]
 fn the_visible_part_of_an_emitter_shades_exactly() {
-    use lumiere::raster::{LightVisibility, Visibility, VisiblePart};
-    use lumiere::shading::FrameShading;
+    use lumiere::internals::raster::{LightVisibility, Visibility, VisiblePart};
+    use lumiere::internals::shading::FrameShading;
     let (scene, floor) = soft_scene(4);
     let (view, surface) = visible_surface(&scene);
     let on_floor = |k: usize| {

@@ -4,15 +4,15 @@
 //! normals against the normals of the truly displaced surface.
 
 use glam::{DVec2, DVec3, Vec3};
-use lumiere::geometry::sampling::Stream;
-use lumiere::raster::View;
-use lumiere::render::visible_surface;
-use lumiere::scene::resources::Directory;
-use lumiere::scene::{Scene, scene_from_table, tables};
-use lumiere::texture::bump::perturb;
-use lumiere::texture::mapping::{Frame, IntermediateSurface, Mapping, Projector};
-use lumiere::texture::mip_map::Pyramid;
-use lumiere::texture::{Filter, Texels, Texture, Wrap};
+use lumiere::internals::geometry::sampling::Stream;
+use lumiere::internals::raster::View;
+use lumiere::internals::render::visible_surface;
+use lumiere::internals::scene::resources::Directory;
+use lumiere::internals::scene::{Scene, scene_from_table, tables};
+use lumiere::internals::texture::bump::perturb;
+use lumiere::internals::texture::mapping::{Frame, IntermediateSurface, Mapping, Projector};
+use lumiere::internals::texture::mip_map::Pyramid;
+use lumiere::internals::texture::{Filter, Texels, Texture, Wrap};
 use lumiere::{Image, catalogue, load_scene, render};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};

@@ -3,8 +3,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lumiere::image_io::{self, Format};
-use lumiere::texture::Texels;
+use lumiere::internals::image_io::{self, Format};
+use lumiere::internals::texture::Texels;
 
 fuzz_target!(|data: &[u8]| {
     let _ = image_io::decode(data, Format::Png);

@@ -2,7 +2,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lumiere::image_io::{self, Format};
+use lumiere::internals::image_io::{self, Format};
 
 fuzz_target!(|data: &[u8]| {
     let _ = image_io::decode(data, Format::Pfm);

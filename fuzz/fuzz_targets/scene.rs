@@ -3,7 +3,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lumiere::scene::{scene_from_table, tables};
+use lumiere::internals::scene::{scene_from_table, tables};
 use lumiere_fuzz::{MTL, OBJ, files};
 
 fuzz_target!(|data: &[u8]| {

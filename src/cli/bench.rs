@@ -2,9 +2,9 @@
 
 use super::timing::median;
 use anyhow::Result;
-use lumiere::shadow::ShadowMethod;
-use lumiere::texture::Filter;
-use lumiere::{load_scene, raster, render};
+use lumiere::internals::{raster, render};
+use lumiere::load_scene;
+use lumiere::settings::{Filter, ShadowMethod};
 
 /// Time whole renders (median of several runs) per scene, variant (shadow method or
 /// texture filter) and size, in milliseconds and million samples per second, and

@@ -3,10 +3,10 @@
 
 use super::timing::median;
 use anyhow::{Result, bail};
+use lumiere::Scene;
+use lumiere::internals::radiosity::gathering::gather;
+use lumiere::internals::radiosity::{Division, Estimator, Shooting, Stop, mesh};
 use lumiere::load_scene;
-use lumiere::radiosity::gathering::gather;
-use lumiere::radiosity::{Division, Estimator, Shooting, Stop, mesh};
-use lumiere::scene::Scene;
 
 /// Times, for each wanted element count, shooting to the scene's unshot fraction and
 /// gathering (its form factors and its solve apart).

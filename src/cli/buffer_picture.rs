@@ -1,6 +1,6 @@
 //! A frame's intermediate buffers as pictures, for the gallery and the viewer.
 
-use lumiere::image_io::{self, Buffer, BufferData, Image};
+use lumiere::internals::image_io::{self, Buffer, BufferData, Image};
 
 /// A buffer as a picture: ids and counts colour-mapped; visibility and texture
 /// coordinates as they are; normals from [-1, 1]; radiance at the scene's

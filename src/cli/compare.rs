@@ -2,7 +2,7 @@
 //! thresholds a regression test allows.
 
 use anyhow::{Result, bail};
-use lumiere::image_io::{self, Comparison};
+use lumiere::{Comparison, compare_images, difference_image, read_image, write_image};
 use std::path::PathBuf;
 
 /// Compare two images (PNG, PFM or EXR): RMSE, PSNR, largest channel difference and the
@@ -58,12 +58,12 @@ pub fn run(args: Args) -> Result<()> {
     {
         bail!("--max-differing {f}: must be a fraction between 0 and 1");
     }
-    let a = image_io::load(&args.a)?;
-    let b = image_io::load(&args.b)?;
-    let c = image_io::compare(&a, &b, args.exposure)?;
+    let a = read_image(&args.a)?;
+    let b = read_image(&args.b)?;
+    let c = compare_images(&a, &b, args.exposure)?;
     if let Some(path) = &args.diff {
-        image_io::save(
-            &image_io::difference_image(&a, &b, args.exposure, args.gain),
+        write_image(
+            &difference_image(&a, &b, args.exposure, args.gain),
             path,
             1.0,
         )?;

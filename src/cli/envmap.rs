@@ -3,13 +3,13 @@
 //! converted between layouts.
 
 use anyhow::{Context, Result, bail};
-use lumiere::image_io::{self, Image};
-use lumiere::load_scene;
-use lumiere::render::capture_cube;
-use lumiere::scene::{Scene, objects_named};
+use lumiere::Scene;
+use lumiere::internals::render::capture_cube;
+use lumiere::internals::scene::objects_named;
+use lumiere::internals::texture::Texels;
+use lumiere::internals::texture::environment::{EnvironmentMap, Layout};
 use lumiere::settings::Filter;
-use lumiere::texture::Texels;
-use lumiere::texture::environment::{EnvironmentMap, Layout};
+use lumiere::{Image, ImageFormat, load_scene, read_image, write_image};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -63,7 +63,7 @@ pub struct Args {
 const MAX_SIZE: u32 = 4096;
 
 pub fn run(args: Args) -> Result<()> {
-    image_io::Format::of(&args.output)?;
+    ImageFormat::of(&args.output)?;
     let to = match (args.cube, args.sphere, args.lat_long) {
         (true, _, _) => Layout::Cube,
         (_, true, _) => Layout::Sphere,
@@ -81,7 +81,7 @@ pub fn run(args: Args) -> Result<()> {
             let Some(layout) = args.layout else {
                 bail!("--from needs --layout: how {} is laid out", from.display());
             };
-            let image = image_io::load(from)?;
+            let image = read_image(from)?;
             let texels = Texels {
                 width: image.width,
                 height: image.height,
@@ -117,7 +117,7 @@ pub fn run(args: Args) -> Result<()> {
         height: texels.height,
         pixels: texels.texels,
     };
-    image_io::save(&image, &args.output, exposure)?;
+    write_image(&image, &args.output, exposure)?;
     outln!(
         "wrote {} ({} map, {}x{}) in {:.2} s",
         args.output.display(),

@@ -2,10 +2,10 @@
 //! polygon one patch, for teaching and for checking.
 
 use anyhow::Result;
+use lumiere::Scene;
+use lumiere::internals::radiosity::form_factors::patch_factors;
+use lumiere::internals::radiosity::{Division, Estimator, FormFactorMethod, Mesh};
 use lumiere::load_scene;
-use lumiere::radiosity::form_factors::patch_factors;
-use lumiere::radiosity::{Division, Estimator, FormFactorMethod, Mesh};
-use lumiere::scene::Scene;
 
 /// Print F_ij for every pair of polygons of a scene (rows: from, columns: to).
 ///

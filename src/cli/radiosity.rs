@@ -4,10 +4,10 @@
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use lumiere::image_io::{self, Image};
-use lumiere::radiosity::{self, Settings, Solution};
-use lumiere::render::Renderer;
-use lumiere::scene::Scene;
+use lumiere::Renderer;
+use lumiere::Scene;
+use lumiere::internals::image_io::{self, Image};
+use lumiere::internals::radiosity::{self, Settings, Solution};
 use std::path::PathBuf;
 use std::sync::Arc;
 

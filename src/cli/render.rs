@@ -1,10 +1,10 @@
 //! `lumiere render`: one image of a catalogue entry or a scene file.
 
 use anyhow::{Context, Result, bail};
-use lumiere::radiosity::{FormFactorMethod, Solver};
-use lumiere::render::Renderer;
-use lumiere::shadow::ShadowMethod;
-use lumiere::{catalogue, image_io, load_scene};
+use lumiere::Renderer;
+use lumiere::internals::image_io::StagedDirectory;
+use lumiere::settings::{FormFactorMethod, ShadowMethod, Solver};
+use lumiere::{ImageFormat, catalogue, load_scene, write_image};
 use std::path::PathBuf;
 
 /// Render a catalogue entry (by id) or a scene file (.toml) to PNG, PFM or EXR.
@@ -85,7 +85,7 @@ pub fn run(args: Args) -> Result<()> {
     // Fail on a bad output name before any work is done.
     let aov = args.aov.as_deref();
     if !matches!(aov, Some("all" | "list")) {
-        image_io::Format::of(&args.output)?;
+        ImageFormat::of(&args.output)?;
     }
     let mut sets = Vec::new();
     if args.test_size {
@@ -119,8 +119,8 @@ pub fn run(args: Args) -> Result<()> {
     }
     let scene = renderer.scene();
     if !scene.polygons.is_empty() && {
-        let view = lumiere::raster::sample_view(scene);
-        lumiere::raster::screen_polygons(scene, &view).is_empty()
+        let view = lumiere::internals::raster::sample_view(scene);
+        lumiere::internals::raster::screen_polygons(scene, &view).is_empty()
     } {
         eprintln!(
             "warning: no polygon lies in front of the camera within its field of view (and beyond camera.near = {}): the image shows the background only",
@@ -145,7 +145,7 @@ pub fn run(args: Args) -> Result<()> {
                     "warning: {unbounded} pixels have infinite or undefined radiance (a point light on a surface?); PNG shows them white, PFM and EXR keep them"
                 );
             }
-            Ok(image_io::save(&image, &args.output, exposure)?)
+            Ok(write_image(&image, &args.output, exposure)?)
         }
         Some("list") => {
             for info in renderer.available_buffers()? {
@@ -162,13 +162,13 @@ pub fn run(args: Args) -> Result<()> {
             let rendered = renderer.render_with_buffers(&names)?;
             let dir = &args.output;
             // All the buffers or none: an earlier run's stay until every one is written.
-            let staged = image_io::StagedDirectory::create(dir)
+            let staged = StagedDirectory::create(dir)
                 .with_context(|| format!("cannot create the directory {}", dir.display()))?;
             let mut files = Vec::new();
             for buffer in &rendered.buffers {
                 let format = buffer.natural_format();
                 let file = format!("{}.{}", buffer.name, format.extension());
-                image_io::save(&buffer.to_image(format), &staged.path(&file), 1.0)?;
+                write_image(&buffer.to_image(format), &staged.path(&file), 1.0)?;
                 files.push(file);
             }
             Ok(staged.publish(|name| files.iter().any(|f| f == name))?)
@@ -181,8 +181,8 @@ pub fn run(args: Args) -> Result<()> {
             };
             let rendered = renderer.render_with_buffers(&[name.to_string()])?;
             let buffer = &rendered.buffers[0];
-            let format = image_io::Format::of(&args.output)?;
-            Ok(image_io::save(&buffer.to_image(format), &args.output, 1.0)?)
+            let format = ImageFormat::of(&args.output)?;
+            Ok(write_image(&buffer.to_image(format), &args.output, 1.0)?)
         }
     }
 }

@@ -1,9 +1,8 @@
 //! `lumiere shadow-polygons`: the lit and shadowed polygons of a scene, measured.
 
 use anyhow::{Context, Result, bail};
-use lumiere::scene::{Light, Scene};
-use lumiere::shadow::shadow_polygon_areas::{ReceiverShadows, receiver_shadows};
-use lumiere::{image_io, load_scene};
+use lumiere::internals::shadow::shadow_polygon_areas::{ReceiverShadows, receiver_shadows};
+use lumiere::{ImageFormat, Light, Scene, load_scene, write_atomically};
 use std::path::PathBuf;
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Transform};
 
@@ -26,7 +25,7 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<()> {
     if let Some(path) = &args.png
-        && image_io::Format::of(path)? != image_io::Format::Png
+        && ImageFormat::of(path)? != ImageFormat::Png
     {
         bail!("{}: the plan is drawn as a .png", path.display());
     }
@@ -34,7 +33,7 @@ pub fn run(args: Args) -> Result<()> {
     let light = first_point_light(&scene)?;
     let receivers = receiver_shadows(&scene, light);
     if let Some(path) = &args.png {
-        image_io::write_atomically(path, &plan(&receivers)?)?;
+        write_atomically(path, &plan(&receivers)?)?;
     }
     if args.json {
         let report = serde_json::json!({ "light": light.to_array(), "receivers": receivers });

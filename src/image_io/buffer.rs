@@ -11,20 +11,32 @@ use glam::Vec3;
 pub const NO_ID: u32 = u32::MAX;
 
 #[derive(Clone, Debug, PartialEq)]
+/// What a buffer holds, one value (or one or three floats) per sample.
 pub enum BufferData {
     /// One id per sample (polygon, element), `NO_ID` where none.
     Ids(Vec<u32>),
     /// One signed count per sample (shadow volumes containing it).
     Counts(Vec<i32>),
     /// One or three floats per sample, row-major and interleaved.
-    Values { channels: usize, data: Vec<f32> },
+    /// Floats, `channels` of them per sample, row-major and interleaved.
+    Values {
+        /// Floats per sample: 1 or 3.
+        channels: usize,
+        /// The floats.
+        data: Vec<f32>,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]
+/// A named intermediate buffer of a frame (`--aov`): ids, counts or values per pixel.
 pub struct Buffer {
+    /// Its name (`visibility-0`, `shadow-volume-counts-0`, `polygon-ids`).
     pub name: String,
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
+    /// Its values, row-major, row 0 at the top.
     pub data: BufferData,
 }
 

@@ -7,6 +7,7 @@ use crate::error::{Error, Result};
 use glam::Vec3;
 
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+/// How far two images are apart, on their 8-bit sRGB values.
 pub struct Comparison {
     /// Root mean square difference of the channels, in [0, 1].
     pub rmse: f64,
@@ -18,6 +19,7 @@ pub struct Comparison {
     pub differing_share: f64,
 }
 
+/// Compares two images of the same size, each encoded to 8-bit sRGB after `exposure`.
 pub fn compare(a: &Image, b: &Image, exposure: f32) -> Result<Comparison> {
     if (a.width, a.height) != (b.width, b.height) {
         return Err(Error::SizeMismatch {

@@ -23,8 +23,11 @@ use std::path::{Path, PathBuf};
 /// Linear RGB radiance, row-major, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
+    /// Linear radiance per pixel, `width × height` of them.
     pub pixels: Vec<Vec3>,
 }
 
@@ -61,8 +64,11 @@ impl Image {
 /// The file formats, by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
+    /// PNG, 8-bit sRGB after an exposure.
     Png,
+    /// Portable float map, linear 32-bit float.
     Pfm,
+    /// OpenEXR, linear 32-bit float.
     Exr,
 }
 
@@ -76,6 +82,7 @@ impl Format {
         }
     }
 
+    /// The format a path's extension names (`.png`, `.pfm`, `.exr`).
     pub fn of(path: &Path) -> Result<Format> {
         match path
             .extension()
@@ -254,6 +261,7 @@ pub fn srgb_encode(linear: f32) -> f32 {
     }
 }
 
+/// The linear value of an sRGB-encoded value in [0, 1].
 pub fn srgb_decode(encoded: f32) -> f32 {
     if encoded <= 0.040_45 {
         encoded / 12.92

@@ -1,4 +1,4 @@
-//! The Nusselt analog, counted: the course's [SIEG84] method (R. Siegel, J. R.
+//! The Nusselt analog, counted: the course's \[SIEG84\] method (R. Siegel, J. R.
 //! Howell, *Thermal Radiation Heat Transfer*, 1981 / 1984).
 //!
 //! The form factor from a point to a surface equals the fraction of the unit disc

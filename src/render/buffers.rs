@@ -24,7 +24,9 @@ pub const RAYS: (&str, &str) = (
 /// A buffer a scene's frame can give, and what it holds.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BufferInfo {
+    /// The name a frame is asked for it by.
     pub name: String,
+    /// What it holds, in a line.
     pub description: String,
 }
 

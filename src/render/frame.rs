@@ -11,7 +11,9 @@ use crate::shading::FrameShading;
 
 /// A frame: its linear radiance image and the buffers asked for.
 pub struct Frame {
+    /// Linear radiance, pixel by pixel.
     pub image: Image,
+    /// The buffers asked for, in the order asked.
     pub buffers: Vec<Buffer>,
 }
 

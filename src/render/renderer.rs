@@ -61,6 +61,7 @@ pub struct Renderer {
 }
 
 impl Renderer {
+    /// A renderer of `scene`; nothing is built until a frame needs it.
     pub fn new(scene: Scene) -> Renderer {
         Renderer {
             lights: scene.lights.iter().map(|_| Mutex::new(None)).collect(),
@@ -131,6 +132,7 @@ impl Renderer {
         *self.environments.lock().expect("no poisoned lock") = None;
     }
 
+    /// The scene as the renderer draws it (its camera, lights and settings as changed).
     pub fn scene(&self) -> &Scene {
         &self.scene
     }
@@ -151,6 +153,7 @@ impl Renderer {
         self.hemicube_element
     }
 
+    /// Chooses the element the `hemicube-*` buffers show.
     pub fn set_hemicube_element(&mut self, element: usize) {
         self.hemicube_element = element;
     }

@@ -24,9 +24,11 @@ use std::f64::consts::PI;
 /// An isotropic point light with inverse-square falloff.
 #[derive(Clone, Debug)]
 pub struct PointLight {
+    /// Where it is.
     pub position: DVec3,
     /// Radiant intensity (W/sr per RGB channel).
     pub intensity: Vec3,
+    /// Its name in the scene file, if it has one.
     pub name: Option<String>,
 }
 
@@ -37,6 +39,7 @@ pub struct DistantLight {
     pub direction: DVec3,
     /// Irradiance on a surface facing the light (W/m² per channel).
     pub irradiance: Vec3,
+    /// Its name in the scene file, if it has one.
     pub name: Option<String>,
 }
 
@@ -44,14 +47,19 @@ pub struct DistantLight {
 /// a polygon of the scene (`polygon`), so the camera sees it with its radiance.
 #[derive(Clone, Debug)]
 pub struct PolygonLight {
+    /// Its corners, counter-clockwise seen from the emitting side.
     pub vertices: Vec<DVec3>,
     /// Unit normal, on the emitting side.
     pub normal: DVec3,
     /// Centroid of the vertices and area of the polygon.
     pub centre: DVec3,
+    /// Its area.
     pub area: f64,
+    /// Emitted radiance, the same in every direction of the emitting side.
     pub radiance: Vec3,
+    /// The scene polygon it is (an index into `Scene::polygons`).
     pub polygon: usize,
+    /// Its name in the scene file, if it has one.
     pub name: Option<String>,
     /// The polygon cut into triangles (ear clipping), for sampling by area.
     pub triangles: Vec<[DVec3; 3]>,
@@ -61,6 +69,7 @@ pub struct PolygonLight {
 }
 
 impl PolygonLight {
+    /// A polygon light of `polygon`, its centre, area and triangles computed.
     pub fn new(
         vertices: Vec<DVec3>,
         normal: DVec3,
@@ -125,10 +134,13 @@ impl PolygonLight {
 /// own, like a point light.
 #[derive(Clone, Debug)]
 pub struct SphereLight {
+    /// Its centre.
     pub centre: DVec3,
+    /// Its radius.
     pub radius: f64,
     /// Radiance leaving every point of the sphere in every outward direction.
     pub radiance: Vec3,
+    /// Its name in the scene file, if it has one.
     pub name: Option<String>,
 }
 
@@ -148,6 +160,7 @@ pub enum SpotDistribution {
 /// zero beyond.
 #[derive(Clone, Debug)]
 pub struct SpotLight {
+    /// Where it is.
     pub position: DVec3,
     /// Unit direction the spot points to.
     pub axis: DVec3,
@@ -155,7 +168,9 @@ pub struct SpotLight {
     pub cone_angle: f64,
     /// Radiant intensity on the axis (W/sr per channel).
     pub intensity: Vec3,
+    /// How intensity falls off from the axis inside the cone.
     pub distribution: SpotDistribution,
+    /// Its name in the scene file, if it has one.
     pub name: Option<String>,
 }
 
@@ -200,17 +215,24 @@ fn interpolate(table: &[(f64, f64)], x: f64) -> f64 {
 }
 
 #[derive(Clone, Debug)]
+/// A light of the scene.
 pub enum Light {
+    /// An isotropic point light.
     Point(PointLight),
+    /// Parallel light from far away.
     Distant(DistantLight),
+    /// An emitting polygon.
     Polygon(PolygonLight),
+    /// An emitting sphere.
     Sphere(SphereLight),
+    /// A spot light.
     Spot(SpotLight),
 }
 
 /// One point on (or, for a distant light, towards) a light, seen from a receiver.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightSample {
+    /// The point on (or towards) the light.
     pub point: DVec3,
     /// The estimator's weight: see `Light::sample`.
     pub weight: f64,
@@ -223,10 +245,15 @@ pub const DISTANT_REACH: f64 = 1e7;
 /// The kinds of light, as the scene file's `type` names them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum LightKind {
+    /// `type = "point"`.
     Point,
+    /// `type = "distant"`.
     Distant,
+    /// `type = "polygon"` (an emitting material on a polygon).
     Polygon,
+    /// `type = "sphere"`.
     Sphere,
+    /// `type = "spot"`.
     Spot,
 }
 
@@ -270,6 +297,7 @@ impl Light {
         }
     }
 
+    /// Its name in the scene file, if it has one.
     pub fn name(&self) -> Option<&str> {
         match self {
             Light::Point(l) => l.name.as_deref(),

@@ -41,12 +41,17 @@ pub use crate::settings::{RenderSettings, ShadingMode, ShadowSettings};
 /// A camera as the scene file gives it: a pinhole looking from `eye` to `look_at`.
 #[derive(Clone, Debug)]
 pub struct Camera {
+    /// The centre of projection.
     pub eye: DVec3,
+    /// The point looked at, in the middle of the image.
     pub look_at: DVec3,
+    /// Which way is up in the image.
     pub up: DVec3,
     /// Vertical field of view in degrees.
     pub fov_y: f64,
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
     /// Distance of the near clipping plane along the view direction.
     pub near: f64,
@@ -55,20 +60,25 @@ pub struct Camera {
 /// A surface's reflectance and emission (linear RGB), and the textures on it.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Material {
+    /// Its name in the scene file (`[materials.NAME]`) or the MTL file.
     pub name: String,
     /// Lambertian reflectance ρ: radiance ρ/π × irradiance.
     pub diffuse: Vec3,
     /// Phong specular reflectance and exponent (energy-normalised lobe, see shading).
     pub specular: Vec3,
+    /// The Phong exponent.
     pub exponent: f32,
     /// Emitted radiance, one-sided along the polygon's normal.
     pub emission: Vec3,
     /// Indices into `Scene::textures`: colours multiplying `diffuse` and `specular`.
     pub diffuse_texture: Option<usize>,
+    /// Index into `Scene::textures`: a colour multiplying `specular`.
     pub specular_texture: Option<usize>,
+    /// A bump map (Blinn 1978).
     pub bump: Option<Bump>,
     /// A two-part mapping giving the texture coordinates (else the mesh's own).
     pub mapping: Option<Mapping>,
+    /// How textures are filtered (nearest, bilinear, mip-mapped, summed-area).
     pub interpolation: Interpolation,
     /// Reflection coefficient k_r of the environment seen in the mirror direction
     /// (Blinn & Newell); with `ior`, a tint of Fresnel's reflection.
@@ -88,11 +98,14 @@ pub struct Material {
 /// A bump map: a texture read as a height, and the height of a value of 1.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bump {
+    /// Index into `Scene::textures` of the height field.
     pub texture: usize,
+    /// The height, in scene units, of a texture value of 1.
     pub height: f64,
 }
 
 impl Material {
+    /// Whether it emits.
     pub fn is_emitter(&self) -> bool {
         self.emission.max_element() > 0.0
     }
@@ -107,6 +120,7 @@ impl Material {
         self.environment.is_some()
     }
 
+    /// Whether a texture or bump map is on it.
     pub fn is_textured(&self) -> bool {
         self.diffuse_texture.is_some() || self.specular_texture.is_some() || self.bump.is_some()
     }
@@ -124,14 +138,18 @@ impl Material {
 /// The reflectance at one surface point: a material's, textures applied.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Reflectance {
+    /// Lambertian reflectance ρ.
     pub diffuse: Vec3,
+    /// Phong specular reflectance.
     pub specular: Vec3,
+    /// The Phong exponent.
     pub exponent: f32,
 }
 
 /// A polygon vertex with the attributes the rasterizer interpolates.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Vertex {
+    /// Position in world coordinates.
     pub position: DVec3,
     /// Shading normal (unit): the face normal for faceted objects, a vertex normal
     /// for smooth ones.
@@ -144,14 +162,18 @@ pub struct Vertex {
 /// its normal points to.
 #[derive(Clone, Debug)]
 pub struct Polygon {
+    /// Its corners, counter-clockwise seen from the side the normal points to.
     pub vertices: Vec<Vertex>,
     /// Unit geometric normal (Newell).
     pub normal: DVec3,
+    /// Index into `Scene::materials`.
     pub material: usize,
+    /// Index into `Scene::objects` of the object it belongs to.
     pub object: usize,
 }
 
 impl Polygon {
+    /// Its corners' positions.
     pub fn positions(&self) -> impl Iterator<Item = DVec3> + '_ {
         self.vertices.iter().map(|v| v.position)
     }
@@ -160,6 +182,7 @@ impl Polygon {
 /// A named object: the polygons it owns are those whose `object` is its index.
 #[derive(Clone, Debug)]
 pub struct Object {
+    /// Its name in the scene file (`name/part` for an OBJ file's parts).
     pub name: String,
     /// Shading mode of this object, overriding the render setting.
     pub shading: Option<ShadingMode>,
@@ -174,7 +197,9 @@ pub struct Object {
 /// The transform between an object's modelling coordinates and the world.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ObjectFrame {
+    /// Modelling coordinates to world coordinates.
     pub to_world: DMat4,
+    /// World coordinates to modelling coordinates.
     pub to_object: DMat4,
     /// Centroid of the object's vertices, in modelling coordinates (Bier and Sloan's
     /// centroid projector).
@@ -185,6 +210,7 @@ pub struct ObjectFrame {
 }
 
 impl ObjectFrame {
+    /// The world's own frame.
     pub fn identity() -> ObjectFrame {
         ObjectFrame {
             to_world: DMat4::IDENTITY,
@@ -203,8 +229,11 @@ impl ObjectFrame {
 /// Everything a render needs.
 #[derive(Clone, Debug)]
 pub struct Scene {
+    /// The pinhole camera.
     pub camera: Camera,
+    /// Shading, supersampling, exposure and background.
     pub render: RenderSettings,
+    /// The shadow method and its settings (`[shadows]`).
     pub shadows: ShadowSettings,
     /// Lit by a radiosity solution (`[radiosity]`) instead of the lights.
     pub radiosity: Option<crate::settings::RadiositySettings>,
@@ -212,10 +241,15 @@ pub struct Scene {
     pub medium: Option<crate::settings::MediumSettings>,
     /// Lit by a global-illumination method (`[global]`).
     pub global: Option<crate::settings::GlobalSettings>,
+    /// The materials; polygons name them by index.
     pub materials: Vec<Material>,
+    /// The objects; polygons name them by index.
     pub objects: Vec<Object>,
+    /// Every polygon of the scene, lights' polygons included.
     pub polygons: Vec<Polygon>,
+    /// The lights, in the scene file's order (`lights[i]`, buffers' `-i`).
     pub lights: Vec<Light>,
+    /// Images textures read, loaded or generated once.
     pub textures: Vec<Arc<Texture>>,
     /// Environment maps, loaded or to be captured by the renderer.
     pub environments: Vec<Environment>,
@@ -239,11 +273,14 @@ pub fn objects_named(objects: &[Object], name: &str) -> Vec<usize> {
 /// A named environment map of the scene.
 #[derive(Clone, Debug)]
 pub struct Environment {
+    /// Its name in the scene file (`[environments.NAME]`).
     pub name: String,
+    /// Where its texels come from.
     pub source: EnvironmentSource,
 }
 
 #[derive(Clone, Debug)]
+/// Where an environment map comes from.
 pub enum EnvironmentSource {
     /// Loaded or generated with the scene.
     Map(Arc<EnvironmentMap>),
@@ -261,14 +298,17 @@ pub struct Capture {
     pub resolution: u32,
     /// Indices into `Scene::objects` left out of the faces.
     pub hide: Vec<usize>,
+    /// How the captured faces are filtered when looked up.
     pub filter: crate::settings::Filter,
 }
 
 impl Scene {
+    /// The material polygon `polygon` wears.
     pub fn material_of(&self, polygon: usize) -> &Material {
         &self.materials[self.polygons[polygon].material]
     }
 
+    /// How polygon `polygon` is shaded: its object's mode, else the scene's.
     pub fn shading_of(&self, polygon: usize) -> ShadingMode {
         self.objects[self.polygons[polygon].object]
             .shading

@@ -4,8 +4,8 @@
 pub mod flip;
 
 use glam::{DVec2, DVec3};
-use lumiere::raster::{ScreenPolygon, View};
-use lumiere::scene::{Camera, Vertex};
+use lumiere::internals::raster::{ScreenPolygon, View};
+use lumiere::internals::scene::{Camera, Vertex};
 
 /// A camera at the origin looking down −z: world (x, y, −d) is eye (x, y, d).
 pub fn origin_view(width: u32, height: u32) -> View {
@@ -48,7 +48,7 @@ pub fn error_line(e: &dyn std::error::Error) -> String {
 
 /// Files held in memory, as a scene's directory.
 #[allow(unused_imports)]
-pub use lumiere::scene::resources::InMemory as Files;
+pub use lumiere::internals::scene::resources::InMemory as Files;
 
 /// A scene written to a temporary file and loaded from it, with `--set` overrides
 /// (the path a scene file takes, with its relative paths and messages).

@@ -5,9 +5,9 @@
 
 use super::topics::Page;
 use anyhow::{Context, Result};
-use lumiere::image_io;
-use lumiere::radiosity::{self, Solution, Solver};
-use lumiere::render::Renderer;
+use lumiere::Renderer;
+use lumiere::internals::image_io;
+use lumiere::internals::radiosity::{self, Solution, Solver};
 use lumiere::settings::ShadowMethod;
 use lumiere::{catalogue, load_scene};
 use serde::{Deserialize, Serialize};

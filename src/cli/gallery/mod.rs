@@ -17,7 +17,7 @@ use anyhow::{Context, Result, bail};
 use cards::{Card, CardSpec, Fnv};
 use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::catalogue::{self, Entry, Topic};
-use lumiere::image_io::StagedDirectory;
+use lumiere::internals::image_io::StagedDirectory;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

@@ -5,13 +5,14 @@
 use super::svg::{BarChart, LinePlot, Scale, Series};
 use super::topics::Plot;
 use anyhow::{Context, Result};
-use lumiere::image_io::{self, Image};
-use lumiere::radiosity::form_factors::patch_factors;
-use lumiere::radiosity::gathering::gauss_seidel_observed;
-use lumiere::radiosity::{self, Division, Estimator, FormFactorMethod, Mesh, Solver};
-use lumiere::render::Renderer;
-use lumiere::scene::resources::InMemory;
-use lumiere::{catalogue, load_scene, scene};
+use lumiere::Renderer;
+use lumiere::internals::image_io::{self, Image};
+use lumiere::internals::radiosity::form_factors::patch_factors;
+use lumiere::internals::radiosity::gathering::gauss_seidel_observed;
+use lumiere::internals::radiosity::{self, Division, Estimator, FormFactorMethod, Mesh, Solver};
+use lumiere::internals::scene;
+use lumiere::internals::scene::resources::InMemory;
+use lumiere::{catalogue, load_scene};
 use std::sync::Arc;
 
 /// A drawn plot and what to say about it.

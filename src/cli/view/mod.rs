@@ -16,7 +16,7 @@ mod session;
 
 use anyhow::{Context, Result, bail};
 use glam::DVec3;
-use lumiere::shadow::ShadowMethod;
+use lumiere::settings::ShadowMethod;
 use session::{Frame, Session};
 use std::num::NonZeroU32;
 use std::rc::Rc;

@@ -3,7 +3,7 @@
 //! about what the scene looks at.
 
 use glam::DVec3;
-use lumiere::scene::Camera;
+use lumiere::Camera;
 
 #[derive(Clone, Debug)]
 pub struct Orbit {

@@ -2,9 +2,9 @@
 //! "observation des états intermédiaires"): shooting hands over its state every
 //! few steps, gathering its solution when done. Dropping the solve stops it.
 
-use lumiere::radiosity::receivers::Receivers;
-use lumiere::radiosity::{self, Estimator, Settings, Shooting, Solution, Solver};
-use lumiere::scene::Scene;
+use lumiere::Scene;
+use lumiere::internals::radiosity::receivers::Receivers;
+use lumiere::internals::radiosity::{self, Estimator, Settings, Shooting, Solution, Solver};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};

@@ -8,10 +8,9 @@ use super::orbit::Orbit;
 use super::progressive::Progressive;
 use anyhow::Result;
 use glam::DVec3;
-use lumiere::image_io::{self, Image};
-use lumiere::render::Renderer;
-use lumiere::scene::{Light, Scene};
+use lumiere::internals::image_io;
 use lumiere::settings::{Filter, Solver};
+use lumiere::{Image, Light, Renderer, Scene};
 use lumiere::{catalogue, load_scene};
 use std::collections::HashMap;
 use std::time::{Duration, Instant};
@@ -283,10 +282,10 @@ impl Session {
         if scale == 1 {
             self.times[other] = Some(time);
         }
-        let c = image_io::compare(&image, &second, exposure)?;
+        let c = lumiere::compare_images(&image, &second, exposure)?;
         self.difference = Some((c.rmse, c.differing_share));
         if self.show_difference {
-            let d = image_io::difference_image(&image, &second, exposure, 4.0);
+            let d = lumiere::difference_image(&image, &second, exposure, 4.0);
             return Ok(Some(to_frame(&d, 1.0)));
         }
         // Left half one mode, right half the other.
@@ -381,13 +380,13 @@ fn modes(scene: &Scene) -> Result<Vec<Mode>> {
         ]);
     }
     let mut modes = Vec::new();
-    for method in lumiere::shadow::METHODS {
+    for method in lumiere::internals::shadow::METHODS {
         let mut candidate = scene.clone();
         candidate.shadows.method = method;
         if Renderer::new(candidate).check().is_ok() {
             modes.push(Mode {
                 name: method.name().into(),
-                paper: match lumiere::shadow::method(method).entry {
+                paper: match lumiere::internals::shadow::method(method).entry {
                     Some(entry) => paper(entry),
                     None => "no shadows".into(),
                 },

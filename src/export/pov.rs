@@ -18,8 +18,8 @@
 //!   16-bit PNG, or to EXR, which POV-Ray writes as half floats.
 
 use super::Mesh;
+use crate::scene::{Light, Scene};
 use glam::{DVec3, Vec3};
-use lumiere::scene::{Light, Scene};
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 
@@ -48,7 +48,7 @@ fn diagonal(scene: &Scene) -> f64 {
     }
 }
 
-pub fn scene(scene: &Scene, meshes: &[Mesh], area_samples: u32) -> String {
+pub(super) fn scene(scene: &Scene, meshes: &[Mesh], area_samples: u32) -> String {
     let diagonal = diagonal(scene);
     let fade = diagonal * 1e-3;
     // Light colour per unit of intensity (W/sr), with the fade above.
@@ -104,7 +104,7 @@ pub fn scene(scene: &Scene, meshes: &[Mesh], area_samples: u32) -> String {
         let mut next = 0;
         for polygon in &mesh.polygons {
             let positions: Vec<DVec3> = polygon.iter().map(|p| p.0).collect();
-            for [a, b, c] in lumiere::geometry::polygon::triangulate(&positions) {
+            for [a, b, c] in crate::geometry::polygon::triangulate(&positions) {
                 faces.push(format!("<{}, {}, {}>", next + a, next + b, next + c));
             }
             next += polygon.len();

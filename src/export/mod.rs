@@ -1,6 +1,6 @@
-//! `lumiere export`: a lumiere scene as another renderer's scene, so that any
-//! catalogue entry can be rendered by POV-Ray or Mitsuba 3 and compared with
-//! lumiere: the same camera, geometry, materials, lights and units.
+//! A lumiere scene as another renderer's scene, so that any catalogue entry can be
+//! rendered by POV-Ray or Mitsuba 3 and compared with lumiere: the same camera,
+//! geometry, materials, lights and units.
 //!
 //! What the other renderer cannot say the same way (textures, bump maps,
 //! environment maps, media, lumiere's normalised Phong lobe) is left out, and each
@@ -10,110 +10,123 @@
 mod mitsuba;
 mod pov;
 
-use anyhow::{Result, bail};
+use crate::error::{Error, Result};
+use crate::image_io::write_atomically;
+use crate::scene::{Light, Scene, SpotDistribution};
 use glam::{DVec3, Vec3};
-use lumiere::load_scene;
-use lumiere::scene::Scene;
 use std::path::{Path, PathBuf};
 
-/// Write a scene (a catalogue id or a .toml file) as POV-Ray SDL or Mitsuba 3 XML.
-///
-/// Mitsuba's meshes go into OUT-meshes/ beside the XML, one OBJ per material.
-#[derive(clap::Args, Debug)]
-#[command(allow_negative_numbers = true)]
-pub struct Args {
-    /// A catalogue id or the path of a .toml scene file.
-    scene: String,
-    #[arg(long, value_enum)]
-    format: Format,
-    /// The scene file written (.pov or .xml).
-    #[arg(short, long)]
-    output: PathBuf,
-    #[command(flatten)]
-    size: super::ImageSize,
-    /// Mitsuba: samples per pixel of its stratified sampler.
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=1 << 20))]
-    spp: u32,
-    /// Mitsuba: the integrator (default: `direct` for a scene lit by its lights,
-    /// `path` for one lit by radiosity or a global method).
-    #[arg(long, value_enum)]
-    integrator: Option<Integrator>,
-    /// POV-Ray: lightlets along each side of an area light.
-    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(2..=64))]
-    area_samples: u32,
-    /// Override any scene key (as for `render`). Repeatable.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    sets: Vec<String>,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+/// The renderer a scene is written for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Format {
-    /// POV-Ray 3.7 scene description language.
+    /// POV-Ray 3.7 scene description language (`.pov`).
     Pov,
-    /// Mitsuba 3 XML.
+    /// Mitsuba 3 XML (`.xml`), its meshes as OBJ files in a folder beside it.
     Mitsuba,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Integrator {
+impl Format {
+    /// The extension of the scene file written.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::Pov => "pov",
+            Format::Mitsuba => "xml",
+        }
+    }
+
+    /// The renderer's name.
+    pub fn renderer(self) -> &'static str {
+        match self {
+            Format::Pov => "POV-Ray",
+            Format::Mitsuba => "Mitsuba",
+        }
+    }
+}
+
+/// Mitsuba's integrator.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum MitsubaIntegrator {
     /// Direct light only (emitter sampling).
     Direct,
     /// Every bounce (unbounded path tracing).
     Path,
 }
 
-pub fn run(args: Args) -> Result<()> {
-    let extension = match args.format {
-        Format::Pov => "pov",
-        Format::Mitsuba => "xml",
-    };
-    if args.output.extension().is_none_or(|e| e != extension) {
-        bail!(
-            "{}: a {} scene is written as .{extension}",
-            args.output.display(),
-            match args.format {
-                Format::Pov => "POV-Ray",
-                Format::Mitsuba => "Mitsuba",
-            }
-        );
+/// How a scene is exported.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// The renderer written for.
+    pub format: Format,
+    /// Mitsuba: samples per pixel of its stratified sampler.
+    pub spp: u32,
+    /// Mitsuba: the integrator (`None`: `direct` for a scene lit by its lights,
+    /// `path` for one lit by radiosity or a global method).
+    pub integrator: Option<MitsubaIntegrator>,
+    /// POV-Ray: lightlets along each side of an area light.
+    pub area_samples: u32,
+}
+
+impl Options {
+    /// The command line's defaults for `format`: 64 samples per pixel for Mitsuba,
+    /// 8 × 8 lightlets per area light for POV-Ray.
+    pub fn new(format: Format) -> Options {
+        Options {
+            format,
+            spp: 64,
+            integrator: None,
+            area_samples: 8,
+        }
     }
-    let mut sets = args.sets.clone();
-    sets.extend(args.size.sets());
-    let scene = load_scene(&args.scene, &sets)?;
-    for warning in left_out(&scene, args.format) {
-        eprintln!("warning: export: {warning}");
+}
+
+/// Writes `scene` at `output` (a `.pov` or `.xml` file; Mitsuba's meshes go into the
+/// folder `OUT-meshes/` beside it), each file written whole or not at all. Returns
+/// what the export left out, a line each (see `left_out`).
+pub fn export(scene: &Scene, options: &Options, output: &Path) -> Result<Vec<String>> {
+    let extension = options.format.extension();
+    if output.extension().is_none_or(|e| e != extension) {
+        return Err(Error::Invalid {
+            key: "output".into(),
+            message: format!(
+                "{}: a {} scene is written as .{extension}",
+                output.display(),
+                options.format.renderer()
+            ),
+        });
     }
-    let meshes = meshes(&scene);
-    match args.format {
+    let meshes = meshes(scene);
+    match options.format {
         Format::Pov => {
-            let text = pov::scene(&scene, &meshes, args.area_samples);
-            lumiere::image_io::write_atomically(&args.output, text.as_bytes())?;
+            let text = pov::scene(scene, &meshes, options.area_samples);
+            write_atomically(output, text.as_bytes())?;
         }
         Format::Mitsuba => {
-            let integrator =
-                args.integrator
-                    .unwrap_or(if scene.radiosity.is_some() || scene.global.is_some() {
-                        Integrator::Path
-                    } else {
-                        Integrator::Direct
-                    });
-            mitsuba::write(&scene, &meshes, &args.output, args.spp, integrator)?;
+            let integrator = options.integrator.unwrap_or(
+                if scene.radiosity.is_some() || scene.global.is_some() {
+                    MitsubaIntegrator::Path
+                } else {
+                    MitsubaIntegrator::Direct
+                },
+            );
+            mitsuba::write(scene, &meshes, output, options.spp, integrator)?;
         }
     }
-    Ok(())
+    Ok(left_out(scene, options.format))
 }
 
 /// The polygons of one material: what both formats write as one mesh.
-pub struct Mesh {
-    pub material: usize,
+struct Mesh {
+    material: usize,
     /// Each polygon's vertices: position and shading normal.
-    pub polygons: Vec<Vec<(DVec3, DVec3)>>,
+    polygons: Vec<Vec<(DVec3, DVec3)>>,
     /// Whether every polygon is shaded with its face normal (no interpolation).
-    pub faceted: bool,
+    faceted: bool,
 }
 
 /// The scene's polygons by material, in the order materials first appear.
-pub fn meshes(scene: &Scene) -> Vec<Mesh> {
+fn meshes(scene: &Scene) -> Vec<Mesh> {
     let mut meshes: Vec<Mesh> = Vec::new();
     for p in &scene.polygons {
         let polygon: Vec<(DVec3, DVec3)> =
@@ -137,8 +150,8 @@ pub fn meshes(scene: &Scene) -> Vec<Mesh> {
     meshes
 }
 
-/// What the export cannot carry over, said once each.
-fn left_out(scene: &Scene, format: Format) -> Vec<String> {
+/// What an export of `scene` for `format` cannot carry over, said once each.
+pub fn left_out(scene: &Scene, format: Format) -> Vec<String> {
     let mut out = Vec::new();
     let mut say = |what: String| {
         if !out.contains(&what) {
@@ -196,13 +209,11 @@ fn left_out(scene: &Scene, format: Format) -> Vec<String> {
     }
     for (index, light) in scene.lights.iter().enumerate() {
         match light {
-            lumiere::scene::Light::Sphere(_) if format == Format::Mitsuba => say(format!(
+            Light::Sphere(_) if format == Format::Mitsuba => say(format!(
                 "{}: an emitting sphere, seen by the camera and casting shadows, which lumiere's is not",
                 light.label(index)
             )),
-            lumiere::scene::Light::Polygon(l)
-                if format == Format::Pov && !parallelogram(&l.vertices) =>
-            {
+            Light::Polygon(l) if format == Format::Pov && !parallelogram(&l.vertices) => {
                 say(format!(
                     "{}: not a parallelogram: POV-Ray's area light spans the parallelogram of its first edges",
                     light.label(index)
@@ -218,8 +229,8 @@ fn left_out(scene: &Scene, format: Format) -> Vec<String> {
         say("POV-Ray's scene is lit directly only (no radiosity, no global method)".into());
     }
     for (index, light) in scene.lights.iter().enumerate() {
-        if let lumiere::scene::Light::Spot(s) = light
-            && !matches!(s.distribution, lumiere::scene::SpotDistribution::CosinePower(p) if p == 0.0)
+        if let Light::Spot(s) = light
+            && !matches!(s.distribution, SpotDistribution::CosinePower(p) if p == 0.0)
         {
             say(format!(
                 "{}: its intensity distribution becomes a uniform cone",
@@ -231,7 +242,7 @@ fn left_out(scene: &Scene, format: Format) -> Vec<String> {
 }
 
 /// A path beside `output` named after it: `out.xml` → `out-meshes`.
-pub fn sibling(output: &Path, suffix: &str) -> PathBuf {
+fn sibling(output: &Path, suffix: &str) -> PathBuf {
     let stem = output
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())

@@ -5,11 +5,12 @@
 //! Gaussian), and two-sided diffuse surfaces (Mitsuba's are black from behind,
 //! lumiere shades both sides). Area emitters are one-sided in both.
 
-use super::{Integrator, Mesh, sibling};
-use anyhow::{Context, Result};
+use super::{Mesh, MitsubaIntegrator as Integrator, sibling};
+use crate::error::{Error, FileOp, Result};
+use crate::geometry::polygon::triangulate;
+use crate::image_io::write_atomically;
+use crate::scene::{Light, Scene};
 use glam::{DVec3, Vec3};
-use lumiere::geometry::polygon::triangulate;
-use lumiere::scene::{Light, Scene};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -25,7 +26,7 @@ fn rgb(name: &str, c: Vec3) -> String {
 }
 
 /// Writes the XML at `output` and its meshes in `output`'s `-meshes` folder.
-pub fn write(
+pub(super) fn write(
     scene: &Scene,
     meshes: &[Mesh],
     output: &Path,
@@ -33,8 +34,7 @@ pub fn write(
     integrator: Integrator,
 ) -> Result<()> {
     let folder = sibling(output, "-meshes");
-    std::fs::create_dir_all(&folder)
-        .with_context(|| format!("cannot create {}", folder.display()))?;
+    std::fs::create_dir_all(&folder).map_err(|e| Error::io(FileOp::Write, &folder, e))?;
     let folder_name = folder
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -90,7 +90,7 @@ pub fn write(
         let material = &scene.materials[mesh.material];
         let file = format!("{k:03}.obj");
         let path = folder.join(&file);
-        lumiere::image_io::write_atomically(&path, obj(mesh).as_bytes())?;
+        write_atomically(&path, obj(mesh).as_bytes())?;
         let _ = writeln!(
             xml,
             "  <shape type=\"obj\" id=\"{k:03}\">\n    <string name=\"filename\" value=\"{folder_name}/{file}\"/>\n    <boolean name=\"face_normals\" value=\"{}\"/>",
@@ -175,7 +175,7 @@ pub fn write(
         }
     }
     xml.push_str("</scene>\n");
-    lumiere::image_io::write_atomically(output, xml.as_bytes())?;
+    write_atomically(output, xml.as_bytes())?;
     Ok(())
 }
 

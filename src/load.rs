@@ -1,0 +1,145 @@
+//! Scenes from a catalogue id, a scene file or a TOML string, with the command
+//! line's `--set` overrides applied in order, and the refusals that need the whole
+//! scene (an override that adds a texture or material nothing uses).
+
+use crate::catalogue;
+use crate::error::{Error, FileOp, Result};
+use crate::scene::resources::{Directory, Layered, Resources};
+use crate::scene::{self, Scene};
+use crate::shadow;
+use std::path::{Path, PathBuf};
+
+/// Loads a scene named by a catalogue id or a path to a `.toml` scene file, with
+/// `key=value` overrides applied in order (the command line's `--set`).
+///
+/// A scene file's models and textures are found beside it, then in the catalogue.
+pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
+    let path = Path::new(spec);
+    if spec.ends_with(".toml") || path.exists() {
+        let text =
+            std::fs::read_to_string(path).map_err(|e| Error::io(FileOp::ReadScene, path, e))?;
+        let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        scene_from_text(&text, spec, Some(base_dir), overrides)
+    } else {
+        let table = catalogue::entry(spec)?.scene;
+        scene_from_parsed(table, spec, None, overrides)
+    }
+}
+
+/// A scene from the text of a scene file, with `key=value` overrides applied in
+/// order. It may `extends` a catalogue entry; the models and textures it names are
+/// the catalogue's (`models/teapot.obj`, `textures/brick.png`).
+pub fn scene_from_toml(text: &str, overrides: &[String]) -> Result<Scene> {
+    scene_from_text(text, "<toml>", None, overrides)
+}
+
+/// `text` parsed, and its `extends` merged in: a scene file may start from a
+/// catalogue entry (`extends = "cornell-box"`).
+fn scene_from_text(
+    text: &str,
+    spec: &str,
+    base_dir: Option<PathBuf>,
+    overrides: &[String],
+) -> Result<Scene> {
+    let mut table = scene::tables::parse(text, spec)?;
+    if let Some(base) = table.remove("extends") {
+        let base = base
+            .as_str()
+            .ok_or_else(|| Error::invalid("extends", "`extends` must be a catalogue id"))?;
+        let mut merged = catalogue::entry(base)?.scene;
+        scene::tables::merge(&mut merged, table);
+        table = merged;
+    }
+    scene_from_parsed(table, spec, base_dir, overrides)
+}
+
+/// The scene of a parsed table, its overrides applied; files are looked for in
+/// `base_dir` (a scene file's folder) first, then in the catalogue.
+fn scene_from_parsed(
+    mut table: toml::Table,
+    spec: &str,
+    base_dir: Option<PathBuf>,
+    overrides: &[String],
+) -> Result<Scene> {
+    // Entries of the named collections the overrides add (collection, name, assignment).
+    let mut added = Vec::new();
+    for assignment in overrides {
+        let before = scene::tables::named_entries(&table);
+        scene::tables::set(&mut table, assignment)?;
+        for (collection, name) in scene::tables::named_entries(&table).difference(&before) {
+            added.push((*collection, name.clone(), assignment.as_str()));
+        }
+    }
+    refuse_unused_textures(&table, &added)?;
+    let catalogue = catalogue::resources();
+    let layered;
+    let resources: &dyn Resources = match base_dir {
+        Some(dir) => {
+            layered = Layered(vec![Box::new(Directory(dir)), Box::new(catalogue)]);
+            &layered
+        }
+        None => &catalogue,
+    };
+    // The shadow method's own budget, refused before any work.
+    let scene = scene::scene_from_table(table, resources)
+        .and_then(|scene| {
+            (shadow::method(scene.shadows.method).budget)(&scene).map_err(Error::OverBudget)?;
+            Ok(scene)
+        })
+        .map_err(|e| Error::InScene {
+            spec: spec.to_string(),
+            source: Box::new(e),
+        })?;
+    refuse_unused_materials(&scene, &added)?;
+    Ok(scene)
+}
+
+/// A texture an override adds that no material names (a misspelt name) is refused.
+fn refuse_unused_textures(table: &toml::Table, added: &[(&str, String, &str)]) -> Result<()> {
+    let materials = table.get("materials").and_then(toml::Value::as_table);
+    let used = |name: &str| {
+        materials.into_iter().flat_map(|m| m.values()).any(|m| {
+            ["diffuse_texture", "specular_texture", "bump_texture"]
+                .iter()
+                .any(|key| m.get(*key).and_then(toml::Value::as_str) == Some(name))
+        })
+    };
+    for (_, name, assignment) in added.iter().filter(|a| a.0 == "textures") {
+        if !used(name) {
+            let textures = table.get("textures").and_then(toml::Value::as_table);
+            let defined = textures
+                .into_iter()
+                .flat_map(|t| t.keys())
+                .filter(|k| !added.iter().any(|(c, n, _)| *c == "textures" && n == *k));
+            return Err(Error::Override {
+                assignment: assignment.to_string(),
+                message: scene::tables::not_defined("textures", name, defined.map(String::as_str)),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// A material an override adds that no polygon wears (a misspelt name) is refused;
+/// one named like an OBJ file's MTL material replaces it, and is worn.
+fn refuse_unused_materials(scene: &Scene, added: &[(&str, String, &str)]) -> Result<()> {
+    let is_added = |name: &str| added.iter().any(|(c, n, _)| *c == "materials" && n == name);
+    for (_, name, assignment) in added.iter().filter(|a| a.0 == "materials") {
+        let worn = scene
+            .polygons
+            .iter()
+            .any(|p| scene.materials[p.material].name == *name);
+        if !worn {
+            let defined = scene
+                .materials
+                .iter()
+                .map(|m| m.name.as_str())
+                .filter(|n| !is_added(n));
+            return Err(Error::Override {
+                assignment: assignment.to_string(),
+                message: scene::tables::not_defined("materials", name, defined),
+            });
+        }
+    }
+    Ok(())
+}
