@@ -44,6 +44,9 @@ use internals::{
     geometry, global, image_io, media, radiosity, raster, render, scene, shading, shadow, texture,
 };
 
+/// The vector types of the scene's fields (`DVec3` positions, `Vec3` colours).
+pub use glam;
+
 pub use error::{Error, FileOp, OverBudget, Result, Unsupported};
 pub use image_io::{
     Buffer, BufferData, Comparison, Format as ImageFormat, Image, NO_ID, compare as compare_images,
