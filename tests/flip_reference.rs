@@ -182,7 +182,7 @@ fn the_two_pass_mirror_box_matches_a_path_tracer() {
 /// --global --size 256 --spp 4096 --seed 7`; a 1024-spp render is FLIP 0.0094 from
 /// it). The two-pass way with exact direct light (`cornell-box-global`) measures
 /// 0.050; the issue asked 0.03, which the 35 mm mesh of the indirect light does not
-/// give (see the README). Radiosity alone on the same mesh measures 0.070.
+/// give (see docs/topics/global-illumination.md). Radiosity alone on the same mesh measures 0.070.
 const GLOBAL_REFERENCE: &str = "tests/references/cornell-box-global-mitsuba.pfm";
 
 fn global_flip(entry: &str) -> f64 {

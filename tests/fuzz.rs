@@ -3,7 +3,7 @@
 //! the image decoders. Each must answer with a result, never a panic.
 //!
 //! The suite runs a few hundred cases per target; a long run sets `FUZZ_CASES`:
-//! `FUZZ_CASES=1000000 cargo test --release --test fuzz` (see the README for what it
+//! `FUZZ_CASES=1000000 cargo test --release --test fuzz` (see docs/verification.md for what it
 //! found). Coverage-guided fuzzing (cargo-fuzz) needs a nightly toolchain; these
 //! harnesses drive the same entry points with proptest's generators instead.
 

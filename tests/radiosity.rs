@@ -572,7 +572,7 @@ fn shooting_converges_to_the_gauss_seidel_solution_of_its_own_factors_on_the_cor
     // Shooting from patch i uses i's hemi-cube row F_ij and hands element j the
     // reciprocal F'_ji = F_ij A_i / A_j; Gauss–Seidel on F' must reach the same
     // radiosities. (Gauss–Seidel on each element's own hemi-cube differs by the
-    // hemi-cube's non-reciprocity: 1.7% in L1 on this mesh, see the README.)
+    // hemi-cube's non-reciprocity: 1.7% in L1 on this mesh.)
     let sets = [
         "radiosity.patch_size=140.0".to_string(),
         "radiosity.element_size=140.0".to_string(),
@@ -769,7 +769,7 @@ fn gathering_and_shooting_converge_to_each_other_as_patches_shrink() {
 // patch-centre approximation leaves the furnace's elements along the cube's edges
 // up to 2% off (the furnace test above), and on the Cornell box gathering and
 // shooting differ by 0.87% (area-weighted L1) with 35 mm patches at hemi-cube
-// resolution 512 (the README), because each samples the factors at a different
+// resolution 512, because each samples the factors at a different
 // patch's centre. The checks below are exact wherever the method is: analytic
 // factors from a point inside a closed box sum to exactly one, so gathering
 // holds the furnace to rounding and shooting conserves power to rounding. Where

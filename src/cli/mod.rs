@@ -20,8 +20,10 @@ macro_rules! out {
 
 mod bench;
 mod bench_radiosity;
+mod bitmap_text;
 mod buffer_picture;
 mod compare;
+mod contact_sheet;
 mod envmap;
 mod export;
 mod form_factors;
@@ -62,6 +64,7 @@ enum Command {
     Bench(bench::Args),
     ShadowPolygons(shadow_polygons::Args),
     FormFactors(form_factors::Args),
+    ContactSheet(contact_sheet::Args),
 }
 
 impl Cli {
@@ -152,5 +155,6 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Bench(a) => bench::run(a),
         Command::ShadowPolygons(a) => shadow_polygons::run(a),
         Command::FormFactors(a) => form_factors::run(a),
+        Command::ContactSheet(a) => contact_sheet::run(a),
     }
 }

@@ -1,9 +1,11 @@
 //! Convex polygons in a plane: the convex hull of points (A. M. Andrew, "Another
 //! efficient algorithm for convex hulls in two dimensions", Information Processing
 //! Letters 9(5), 1979: the monotone chain) and the intersection of two convex
-//! polygons (Sutherland–Hodgman against each edge of the clip polygon in turn).
-//! Both keep polygons counter-clockwise.
+//! polygons (Sutherland–Hodgman against each edge of the clip polygon in turn), and
+//! a convex polygon less convex holes, as convex pieces. All keep polygons
+//! counter-clockwise.
 
+use super::plane::bounds;
 use super::sutherland_hodgman::clip;
 use super::weiler_atherton::contour_area;
 use glam::DVec2;
@@ -74,6 +76,47 @@ pub fn is_convex_ccw(polygon: &[DVec2]) -> bool {
             let (a, b, c) = (polygon[i], polygon[(i + 1) % n], polygon[(i + 2) % n]);
             (b - a).perp_dot(c - b) >= 0.0
         })
+}
+
+/// A convex polygon less convex holes, as disjoint convex polygons: each hole is
+/// taken from every piece it overlaps by cutting the piece along the hole's edges in
+/// turn (the part outside the first edge's line, then of the rest the part outside
+/// the second's, …), each cut a Sutherland–Hodgman clip. Exact like Weiler–Atherton
+/// subtraction, and without its topology: holes sharing edges (a mesh's faces seen
+/// from one point) need no perturbation.
+pub fn subtract(piece: &[DVec2], holes: &[Vec<DVec2>]) -> Vec<Vec<DVec2>> {
+    let mut pieces = vec![piece.to_vec()];
+    for hole in holes {
+        let (lo, hi) = bounds(hole);
+        let mut next = Vec::with_capacity(pieces.len());
+        for p in pieces {
+            let (plo, phi) = bounds(&p);
+            if plo.x >= hi.x || plo.y >= hi.y || phi.x <= lo.x || phi.y <= lo.y {
+                next.push(p);
+                continue;
+            }
+            let mut rest = p;
+            for (i, &a) in hole.iter().enumerate() {
+                let edge = hole[(i + 1) % hole.len()] - a;
+                if edge == DVec2::ZERO {
+                    continue; // a repeated corner (clipping leaves them): no side to cut
+                }
+                let outside = clip(&rest, |q| -edge.perp_dot(*q - a));
+                if outside.len() >= 3 && contour_area(&outside) > 0.0 {
+                    next.push(outside);
+                }
+                rest = clip(&rest, |q| edge.perp_dot(*q - a));
+                if rest.len() < 3 {
+                    break;
+                }
+            }
+        }
+        pieces = next;
+        if pieces.is_empty() {
+            break;
+        }
+    }
+    pieces
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ pub mod central_projection;
 pub mod convex;
 pub mod disc;
 pub mod lambert_contour;
+pub mod plane;
 pub mod polygon;
 pub mod sampling;
 pub mod sutherland_hodgman;

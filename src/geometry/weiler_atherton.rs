@@ -36,6 +36,7 @@
 //! result, another one is drawn, growing from 1e-10 to 1e-6 of the size over eight
 //! tries (debris of earlier clips can be larger than the first perturbation).
 
+use super::plane::bounds;
 use glam::DVec2;
 
 /// A region: outer contours counter-clockwise, holes clockwise.
@@ -98,14 +99,6 @@ impl<'a> Located<'a> {
             .sum::<i32>()
             != 0
     }
-}
-
-/// Bounding box of a set of points.
-pub fn bounds<'a>(points: impl IntoIterator<Item = &'a DVec2>) -> (DVec2, DVec2) {
-    points.into_iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), q| (lo.min(*q), hi.max(*q)),
-    )
 }
 
 /// A ∩ B and A − B.

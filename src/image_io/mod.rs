@@ -32,6 +32,15 @@ pub struct Image {
 }
 
 impl Image {
+    /// The pixels as a PNG shows them: 8-bit sRGB after `exposure`, clamped, three
+    /// bytes a pixel, row-major.
+    pub fn to_srgb8(&self, exposure: f32) -> Vec<u8> {
+        self.pixels
+            .iter()
+            .flat_map(|p| to_srgb8(*p, exposure))
+            .collect()
+    }
+
     /// The mean of each `factor × factor` block: the box filter over each pixel's
     /// square, from a grid sampled `factor` times finer.
     pub fn downsample(self, factor: u32) -> Image {

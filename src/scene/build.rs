@@ -2,14 +2,14 @@
 //! transforms applied, materials resolved, emitters turned into polygon lights.
 
 use super::file::{LightFile, MAX_MEMORY_BUDGET_MB, ObjectFile, SceneFile, ShapeKind, TextureFile};
+use super::light_settings;
 use super::radiosity_settings;
 use super::resources::Resources;
 use super::shapes::{self, Faces};
 use super::tables::named;
 use super::{
-    DistantLight, Light, Material, Object, ObjectFrame, PointLight, Polygon, PolygonLight,
-    RenderSettings, Scene, SphereLight, SpotDistribution, SpotLight, environments, materials, obj,
-    textures, transform, validate,
+    Light, Material, Object, ObjectFrame, Polygon, PolygonLight, RenderSettings, Scene,
+    environments, materials, obj, textures, transform, validate,
 };
 use crate::error::ensure_valid;
 use crate::error::{Error, Result};
@@ -463,121 +463,52 @@ impl Builder {
 
     /// A point, distant, sphere or spot light is returned; a polygon light becomes
     /// an emissive polygon (and so a light, through `polygon_lights`).
+    /// The light a `[[lights]]` entry makes; a polygon light is a polygon of the
+    /// scene, added here, and becomes a light with the others (`polygon_lights`).
     fn add_light(&mut self, index: usize, light: &LightFile) -> Result<Option<Light>> {
         match light {
-            LightFile::Point {
-                name,
-                position,
-                intensity,
-            } => Ok(Some(Light::Point(PointLight {
-                position: validate::vec3("position", *position)?,
-                intensity: validate::colour("intensity", *intensity)?,
-                name: name.clone(),
-            }))),
-            LightFile::Distant {
-                name,
-                direction,
-                irradiance,
-            } => Ok(Some(Light::Distant(DistantLight {
-                direction: validate::direction("direction", *direction)?,
-                irradiance: validate::colour("irradiance", *irradiance)?,
-                name: name.clone(),
-            }))),
-            LightFile::Sphere {
-                name,
-                centre,
-                radius,
-                radiance,
-            } => {
-                ensure_valid!(
-                    radius.is_finite() && *radius > 0.0,
-                    "radius",
-                    "radius must be a positive number, got {radius}"
-                );
-                let at = validate::vec3("centre", *centre)?;
-                ensure_valid!(
-                    (self.eye - at).length() > *radius,
-                    "radius",
-                    "the sphere light (radius {radius}) encloses the eye: it would be seen from inside, where it does not shine"
-                );
-                Ok(Some(Light::Sphere(SphereLight {
-                    centre: at,
-                    radius: *radius,
-                    radiance: validate::colour("radiance", *radiance)?,
-                    name: name.clone(),
-                })))
-            }
-            LightFile::Spot {
-                name,
-                position,
-                axis,
-                cone_angle,
-                intensity,
-                cosine_power,
-                distribution,
-            } => {
-                ensure_valid!(
-                    cone_angle.is_finite() && *cone_angle > 0.0 && *cone_angle <= 90.0,
-                    "cone_angle",
-                    "cone_angle must be in (0, 90] degrees, got {cone_angle}"
-                );
-                let distribution = match (cosine_power, distribution) {
-                    (Some(_), Some(_)) => {
-                        return Err(Error::invalid(
-                            "distribution",
-                            "give `cosine_power` or `distribution`, not both",
-                        ));
-                    }
-                    (Some(p), None) => {
-                        ensure_valid!(
-                            p.is_finite() && *p >= 0.0,
-                            "cosine_power",
-                            "cosine_power must be a non-negative number, got {p}"
-                        );
-                        SpotDistribution::CosinePower(*p)
-                    }
-                    (None, Some(table)) => SpotDistribution::Table(spot_table(table)?),
-                    (None, None) => SpotDistribution::CosinePower(0.0),
-                };
-                Ok(Some(Light::Spot(SpotLight {
-                    position: validate::vec3("position", *position)?,
-                    axis: validate::direction("axis", *axis)?,
-                    cone_angle: cone_angle.to_radians(),
-                    intensity: validate::colour("intensity", *intensity)?,
-                    distribution,
-                    name: name.clone(),
-                })))
-            }
             LightFile::Polygon {
                 name,
                 vertices,
                 radiance,
             } => {
-                let corners = vertices
-                    .iter()
-                    .map(|&v| validate::vec3("vertices", v))
-                    .collect::<Result<Vec<_>>>()?;
-                check_polygon(&corners)?;
-                let name = name.clone().unwrap_or_else(|| format!("lights[{index}]"));
-                let material = self.add_material(Material {
-                    name: format!("polygon light {index}"),
-                    exponent: 1.0,
-                    emission: validate::colour("radiance", *radiance)?,
-                    ..Default::default()
-                });
-                self.objects.push(Object {
-                    name,
-                    shading: None,
-                    frame: ObjectFrame::identity(),
-                    sphere: false,
-                });
-                let object = self.objects.len() - 1;
-                for face in shapes::polygon(&corners) {
-                    self.push_polygon(face, material, object);
-                }
+                self.add_polygon_light(index, name, vertices, *radiance)?;
                 Ok(None)
             }
+            other => light_settings::light(other, self.eye).map(Some),
         }
+    }
+
+    fn add_polygon_light(
+        &mut self,
+        index: usize,
+        name: &Option<String>,
+        vertices: &[[f64; 3]],
+        radiance: [f64; 3],
+    ) -> Result<()> {
+        let corners = vertices
+            .iter()
+            .map(|&v| validate::vec3("vertices", v))
+            .collect::<Result<Vec<_>>>()?;
+        check_polygon(&corners)?;
+        let name = name.clone().unwrap_or_else(|| format!("lights[{index}]"));
+        let material = self.add_material(Material {
+            name: format!("polygon light {index}"),
+            exponent: 1.0,
+            emission: validate::colour("radiance", radiance)?,
+            ..Default::default()
+        });
+        self.objects.push(Object {
+            name,
+            shading: None,
+            frame: ObjectFrame::identity(),
+            sphere: false,
+        });
+        let object = self.objects.len() - 1;
+        for face in shapes::polygon(&corners) {
+            self.push_polygon(face, material, object);
+        }
+        Ok(())
     }
 
     /// Textures and bump maps are applied per sample, in Phong shading only.
@@ -631,41 +562,6 @@ fn object_frame(m: &DMat4, faces: &Faces, own_mapping: Option<Mapping>) -> Objec
         },
         own_mapping,
     }
-}
-
-/// A spot light's (degrees, factor) table: angles increasing from 0 up, factors
-/// non-negative; angles turned into radians.
-fn spot_table(table: &[[f64; 2]]) -> Result<Vec<(f64, f64)>> {
-    ensure_valid!(
-        !table.is_empty(),
-        "distribution",
-        "distribution must hold at least one [angle, factor] pair"
-    );
-    for (k, &[angle, factor]) in table.iter().enumerate() {
-        ensure_valid!(
-            angle.is_finite() && (0.0..=90.0).contains(&angle),
-            format!("distribution[{k}]"),
-            "distribution[{k}]: angle must be between 0 and 90 degrees, got {angle}"
-        );
-        ensure_valid!(
-            factor.is_finite() && factor >= 0.0,
-            format!("distribution[{k}]"),
-            "distribution[{k}]: factor must be a non-negative number, got {factor}"
-        );
-        if k > 0 && angle <= table[k - 1][0] {
-            return Err(Error::invalid(
-                "distribution",
-                format!(
-                    "distribution angles must increase, got {} then {angle}",
-                    table[k - 1][0]
-                ),
-            ));
-        }
-    }
-    Ok(table
-        .iter()
-        .map(|&[angle, factor]| (angle.to_radians(), factor))
-        .collect())
 }
 
 fn check_polygon(corners: &[DVec3]) -> Result<()> {

@@ -9,6 +9,7 @@ mod build;
 mod environments;
 pub mod file;
 pub mod global_settings;
+mod light_settings;
 pub mod lights;
 mod materials;
 mod medium_settings;

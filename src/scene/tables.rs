@@ -162,22 +162,18 @@ fn parse_value(raw: &str) -> Value {
 }
 
 /// The index of `name` among `known` (things of `kind`), or an error at `key` that
-/// lists the known names.
+/// suggests the nearest name, or lists them all when none is near (as
+/// `not_defined` does).
 pub fn named(known: &HashMap<String, usize>, name: &str, key: &str, kind: &str) -> Result<usize> {
     known.get(name).copied().ok_or_else(|| {
         let mut names: Vec<&str> = known.keys().map(String::as_str).collect();
         names.sort();
-        Error::invalid(
-            key,
-            format!(
-                "{key}: unknown {kind} `{name}` (known: {})",
-                if names.is_empty() {
-                    "none".to_string()
-                } else {
-                    names.join(", ")
-                }
-            ),
-        )
+        let hint = match nearest(names.iter().copied(), name) {
+            Some(near) => format!("did you mean `{near}`?"),
+            None if names.is_empty() => "known: none".to_string(),
+            None => format!("known: {}", names.join(", ")),
+        };
+        Error::invalid(key, format!("{key}: unknown {kind} `{name}` ({hint})"))
     })
 }
 
@@ -204,6 +200,23 @@ mod tests {
         assert!(set(&mut t, "objects.3.material=red").is_err());
         assert!(set(&mut t, "camera.width.x=1").is_err());
         assert!(set(&mut t, "nothing").is_err());
+    }
+
+    #[test]
+    fn an_unknown_name_is_answered_with_the_nearest_or_with_every_known_one() {
+        let known: HashMap<String, usize> =
+            [("floor".to_string(), 0), ("wall".to_string(), 1)].into();
+        assert_eq!(named(&known, "wall", "material", "material").unwrap(), 1);
+        let near = named(&known, "flor", "material", "material").unwrap_err();
+        assert_eq!(
+            near.to_string(),
+            "material: unknown material `flor` (did you mean `floor`?)"
+        );
+        let far = named(&known, "xyzzy", "material", "material").unwrap_err();
+        assert_eq!(
+            far.to_string(),
+            "material: unknown material `xyzzy` (known: floor, wall)"
+        );
     }
 
     #[test]

@@ -4,9 +4,10 @@
 //! units. A polygon the light sees from either side counts as lit there.
 
 use super::shadow_polygons::{DetailPolygon, lit_polygons};
+use crate::geometry::plane::PlaneFrame;
 use crate::geometry::weiler_atherton::{self, Region, contour_area};
 use crate::scene::{Polygon, Scene};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 
 /// The lit and shadowed parts of one polygon. Regions are lists of contours in
 /// object space; outer contours run counter-clockwise seen from the polygon's front,
@@ -22,34 +23,6 @@ pub struct ReceiverShadows {
     pub shadowed_area: f64,
     pub lit: Vec<Vec<[f64; 3]>>,
     pub shadowed: Vec<Vec<[f64; 3]>>,
-}
-
-/// Coordinates in a polygon's plane: origin, and axes u, v with u × v = normal.
-struct PlaneFrame {
-    origin: DVec3,
-    u: DVec3,
-    v: DVec3,
-}
-
-impl PlaneFrame {
-    fn of(polygon: &Polygon) -> PlaneFrame {
-        let n = polygon.normal;
-        let helper = if n.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
-        let u = n.cross(helper).normalize();
-        PlaneFrame {
-            origin: polygon.vertices[0].position,
-            u,
-            v: n.cross(u),
-        }
-    }
-
-    fn flat(&self, p: DVec3) -> DVec2 {
-        DVec2::new((p - self.origin).dot(self.u), (p - self.origin).dot(self.v))
-    }
-
-    fn lift(&self, q: DVec2) -> [f64; 3] {
-        (self.origin + self.u * q.x + self.v * q.y).to_array()
-    }
 }
 
 /// The lit and shadowed polygons of every scene polygon for a point light.
@@ -70,15 +43,15 @@ fn measure(
     polygon: &Polygon,
     details: &[DetailPolygon],
 ) -> ReceiverShadows {
-    let frame = PlaneFrame::of(polygon);
-    let whole: Region = vec![polygon.positions().map(|p| frame.flat(p)).collect()];
+    let frame = PlaneFrame::new(polygon.vertices[0].position, polygon.normal);
+    let whole: Region = vec![polygon.positions().map(|p| frame.coords(p)).collect()];
     let mut lit: Region = Vec::new();
     let mut shadowed = whole.clone();
     for detail in details {
         let mut region: Region = detail
             .contours
             .iter()
-            .map(|(c, _)| c.iter().map(|&p| frame.flat(p)).collect())
+            .map(|(c, _)| c.iter().map(|&p| frame.coords(p)).collect())
             .collect();
         // The way back from the light may mirror a detail polygon: restore the
         // orientation of its outer contour (and so of its holes).
@@ -95,7 +68,7 @@ fn measure(
     }
     let lift = |r: &Region| -> Vec<Vec<[f64; 3]>> {
         r.iter()
-            .map(|c| c.iter().map(|&q| frame.lift(q)).collect())
+            .map(|c| c.iter().map(|&q| frame.point(q).to_array()).collect())
             .collect()
     };
     ReceiverShadows {

@@ -33,6 +33,7 @@
 use super::cube_faces::{FACES, face_view};
 use super::receivers::{ReceiverScreens, seen_in};
 use super::{BandShadows, FrameShadows, LightShadows, per_sample};
+use crate::geometry::plane::bounds;
 use crate::geometry::sutherland_hodgman;
 use crate::geometry::weiler_atherton::{self, Region, area};
 use crate::raster::{DepthPlane, RasterVertex, ScreenPolygon, View, VisibleSurface};
@@ -97,7 +98,7 @@ impl Piece {
             .flatten()
             .map(|p| plane.zeta(p.x, p.y))
             .fold(f64::NEG_INFINITY, f64::max);
-        let bounds = weiler_atherton::bounds(region.iter().flatten());
+        let bounds = bounds(region.iter().flatten());
         Piece {
             source,
             region,

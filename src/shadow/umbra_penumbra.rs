@@ -52,10 +52,11 @@ use super::receivers::{ReceiverScreens, seen_in};
 use super::{BandShadows, FrameShadows, LightShadows, faces_away};
 use crate::geometry::bvh::Aabb;
 use crate::geometry::central_projection::{SHORT_OF_CENTRE, onto_plane};
-use crate::geometry::convex::{hull, intersect, is_convex_ccw};
+use crate::geometry::convex::{hull, intersect, is_convex_ccw, subtract};
+use crate::geometry::plane::{PlaneFrame, bounds};
 use crate::geometry::polygon::triangulate;
 use crate::geometry::sutherland_hodgman::clip;
-use crate::geometry::weiler_atherton::{self, contour_area};
+use crate::geometry::weiler_atherton::contour_area;
 use crate::raster::{LightVisibility, ScreenPolygon, View, VisiblePart, VisibleSurface};
 use crate::scene::LightKind;
 use crate::scene::{Light, Scene};
@@ -89,36 +90,6 @@ pub(crate) static METHOD: super::Method = super::Method {
 pub const LIT: i32 = 0;
 pub const PENUMBRA: i32 = 1;
 pub const UMBRA: i32 = 2;
-
-/// A plane with two unit axes in it (u × v = normal), for 2D work on it.
-#[derive(Clone, Copy, Debug)]
-struct PlaneFrame {
-    origin: DVec3,
-    normal: DVec3,
-    u: DVec3,
-    v: DVec3,
-}
-
-impl PlaneFrame {
-    fn new(origin: DVec3, normal: DVec3) -> PlaneFrame {
-        let (u, _) = normal.any_orthonormal_pair();
-        PlaneFrame {
-            origin,
-            normal,
-            u,
-            v: normal.cross(u),
-        }
-    }
-
-    fn coords(&self, p: DVec3) -> DVec2 {
-        let d = p - self.origin;
-        DVec2::new(d.dot(self.u), d.dot(self.v))
-    }
-
-    fn point(&self, q: DVec2) -> DVec3 {
-        self.origin + self.u * q.x + self.v * q.y
-    }
-}
 
 /// The light as the construction sees it.
 struct Emitter {
@@ -242,7 +213,7 @@ impl UmbraPenumbra {
                 Emitter {
                     pieces,
                     plane: Some(plane),
-                    bounds_2d: weiler_atherton::bounds(pieces_2d.iter().flatten()),
+                    bounds_2d: bounds(pieces_2d.iter().flatten()),
                     pieces_2d,
                     polygon: Some(l.polygon),
                 }
@@ -422,7 +393,7 @@ impl UmbraPenumbra {
                     contours.push((hole.iter().map(|&q| plane.point(q)).collect(), -1.0));
                 }
                 _ => {
-                    for c in subtract_convex(piece, &holes) {
+                    for c in subtract(piece, &holes) {
                         contours.push((c.iter().map(|&q| plane.point(q)).collect(), 1.0));
                     }
                 }
@@ -468,7 +439,7 @@ impl UmbraPenumbra {
             }
         }
         // Nothing of it over the light: no need for its outline.
-        let (lo, hi) = weiler_atherton::bounds(&points);
+        let (lo, hi) = bounds(&points);
         let (light_lo, light_hi) = self.emitter.bounds_2d;
         if lo.x > light_hi.x || lo.y > light_hi.y || hi.x < light_lo.x || hi.y < light_lo.y {
             return None;
@@ -574,7 +545,7 @@ fn penumbra_section(
     }
     let first = angles[after];
     let last = angles[(after + angles.len() - 1) % angles.len()];
-    let (lo, hi) = weiler_atherton::bounds(points.iter().chain(outline));
+    let (lo, hi) = bounds(points.iter().chain(outline));
     let reach = (hi - lo).length() / half.cos();
     let edges = [first, last].map(|a| DVec2::new(a.cos(), a.sin()) * reach);
     let far: Vec<DVec2> = points
@@ -585,47 +556,6 @@ fn penumbra_section(
     (h.len() >= 3)
         .then(|| intersect(&h, outline))
         .filter(|c| !c.is_empty())
-}
-
-/// A convex polygon less convex holes, as disjoint convex polygons: each hole is
-/// taken from every piece it overlaps by cutting the piece along the hole's edges in
-/// turn (the part outside the first edge's line, then of the rest the part outside
-/// the second's, …), each cut a Sutherland–Hodgman clip. Exact like Weiler–Atherton
-/// subtraction, and without its topology: holes sharing edges (a mesh's faces seen
-/// from one point) need no perturbation.
-pub fn subtract_convex(piece: &[DVec2], holes: &[Vec<DVec2>]) -> Vec<Vec<DVec2>> {
-    let mut pieces = vec![piece.to_vec()];
-    for hole in holes {
-        let (lo, hi) = weiler_atherton::bounds(hole);
-        let mut next = Vec::with_capacity(pieces.len());
-        for p in pieces {
-            let (plo, phi) = weiler_atherton::bounds(&p);
-            if plo.x >= hi.x || plo.y >= hi.y || phi.x <= lo.x || phi.y <= lo.y {
-                next.push(p);
-                continue;
-            }
-            let mut rest = p;
-            for (i, &a) in hole.iter().enumerate() {
-                let edge = hole[(i + 1) % hole.len()] - a;
-                if edge == DVec2::ZERO {
-                    continue; // a repeated corner (clipping leaves them): no side to cut
-                }
-                let outside = clip(&rest, |q| -edge.perp_dot(*q - a));
-                if outside.len() >= 3 && contour_area(&outside) > 0.0 {
-                    next.push(outside);
-                }
-                rest = clip(&rest, |q| edge.perp_dot(*q - a));
-                if rest.len() < 3 {
-                    break;
-                }
-            }
-        }
-        pieces = next;
-        if pieces.is_empty() {
-            break;
-        }
-    }
-    pieces
 }
 
 /// The scene's convex occluders for a light with points `light_points`, the

@@ -2,8 +2,6 @@
 //! domain), drawn twice their size on a dark band so that they read on a
 //! projector.
 
-use font8x8::UnicodeFonts;
-
 /// Glyphs are drawn this many times their size: twice on a wide window.
 pub fn scale(width: usize) -> usize {
     if width >= 900 { 2 } else { 1 }
@@ -30,28 +28,12 @@ pub fn draw(pixels: &mut [u32], width: usize, height: usize, lines: &[String]) {
     }
     for (row, line) in lines.iter().enumerate() {
         let top = 2 + row * line_height;
-        for (column, c) in line.chars().enumerate() {
-            let glyph = font8x8::BASIC_FONTS
-                .get(c)
-                .or_else(|| font8x8::LATIN_FONTS.get(c))
-                .unwrap_or([0; 8]);
-            let left = 4 + column * 8 * scale;
-            for (gy, bits) in glyph.iter().enumerate() {
-                for gx in 0..8 {
-                    if bits >> gx & 1 == 0 {
-                        continue;
-                    }
-                    for dy in 0..scale {
-                        for dx in 0..scale {
-                            let (x, y) = (left + gx * scale + dx, top + gy * scale + dy);
-                            if x < width && y < height {
-                                pixels[y * width + x] = 0xf0f0f0;
-                            }
-                        }
-                    }
-                }
+        super::super::bitmap_text::for_each_lit_pixel(line, scale, |x, y| {
+            let (x, y) = (4 + x, top + y);
+            if x < width && y < height {
+                pixels[y * width + x] = 0xf0f0f0;
             }
-        }
+        });
     }
 }
 
