@@ -263,6 +263,10 @@ def versions():
     return lum, pov, f"Mitsuba {mi.__version__}", cpu
 
 
+# The line after which BENCHMARKS.md is written by hand.
+KEEP = "<!-- Written by hand from here on: bench/peers.py keeps it when it rewrites the tables above. -->"
+
+
 def write(args, bench, point, curved, growth):
     lum, pov, mts, cpu = versions()
     out = ["# Benchmarks", "",
@@ -309,8 +313,17 @@ def write(args, bench, point, curved, growth):
             shown = [f"{t:.3f} s" if t else f"> {LIMIT} s" for t in times]
             out.append(f"| {method} | " + " | ".join(shown) + f" | {exponent:.2f} |")
         out.append("")
+    # What follows KEEP in the file (the analysis written by hand) is kept as it is.
+    kept = ""
+    if os.path.exists(args.output):
+        with open(args.output) as f:
+            old = f.read()
+        if KEEP in old:
+            kept = old[old.index(KEEP):]
     with open(args.output, "w") as f:
         f.write("\n".join(out))
+        if kept:
+            f.write("\n" + kept)
     print(f"wrote {args.output}")
 
 

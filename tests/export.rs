@@ -9,7 +9,14 @@ use lumiere::internals::image_io;
 use std::path::Path;
 use std::process::Command;
 
+/// POV-Ray and Mitsuba, installed by the project's script when missing (once a test
+/// binary: its tests ask from several threads).
 fn peers() {
+    static READY: std::sync::OnceLock<()> = std::sync::OnceLock::new();
+    READY.get_or_init(install_when_missing);
+}
+
+fn install_when_missing() {
     let ready = Command::new("python3")
         .args(["-c", "import mitsuba"])
         .status()

@@ -10,7 +10,14 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
+/// The X tools, installed by the project's script when missing (once a test binary:
+/// its tests ask from several threads).
 fn installed() {
+    static INSTALLED: std::sync::OnceLock<()> = std::sync::OnceLock::new();
+    INSTALLED.get_or_init(install_when_missing);
+}
+
+fn install_when_missing() {
     let all = ["Xvfb", "xdotool", "import"].iter().all(|tool| {
         Command::new("sh")
             .args(["-c", &format!("command -v {tool}")])

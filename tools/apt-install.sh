@@ -2,6 +2,7 @@
 # Installs the Debian packages named that are not installed yet (as root, or by
 # sudo): the test tools' install scripts share it.
 set -euo pipefail
+. "$(dirname "$0")/install-lock.sh"
 missing=()
 for p in "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -9,8 +9,14 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 use tungstenite::{Message, WebSocket};
 
-/// Chromium's path, installed by the project's script when missing.
+/// Chromium's path, installed by the project's script when missing (once a test
+/// binary: its tests ask from several threads).
 pub fn chromium() -> String {
+    static PATH: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    PATH.get_or_init(find_or_install).clone()
+}
+
+fn find_or_install() -> String {
     let find = || {
         Command::new("sh")
             .args(["-c", "command -v chromium"])
