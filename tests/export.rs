@@ -86,6 +86,10 @@ fn flip(dir: &Path, reference: &str, test: &str) -> f64 {
 }
 
 #[test]
+#[cfg_attr(
+    skip_system_tests,
+    ignore = "needs POV-Ray and Mitsuba 3 (LUMIERE_SKIP_SYSTEM_TESTS)"
+)]
 fn the_exported_cornell_box_renders_in_mitsuba_and_pov_ray_as_in_lumiere() {
     peers();
     let dir = tempfile::tempdir().unwrap();
@@ -129,6 +133,10 @@ fn the_exported_cornell_box_renders_in_mitsuba_and_pov_ray_as_in_lumiere() {
 }
 
 #[test]
+#[cfg_attr(
+    skip_system_tests,
+    ignore = "needs POV-Ray and Mitsuba 3 (LUMIERE_SKIP_SYSTEM_TESTS)"
+)]
 fn every_kind_of_light_exports_to_scenes_both_peers_light_where_lumiere_does() {
     peers();
     let dir = tempfile::tempdir().unwrap();

@@ -229,6 +229,10 @@ fn differing(a: &[u8], b: &[u8]) -> usize {
 }
 
 #[test]
+#[cfg_attr(
+    skip_system_tests,
+    ignore = "needs Xvfb, xdotool and ImageMagick (LUMIERE_SKIP_SYSTEM_TESTS)"
+)]
 fn the_viewer_shows_what_render_makes_and_follows_keys_and_mouse() {
     let display = Display::start();
     let dir = tempfile::tempdir().unwrap();
@@ -300,6 +304,10 @@ fn the_viewer_shows_what_render_makes_and_follows_keys_and_mouse() {
 }
 
 #[test]
+#[cfg_attr(
+    skip_system_tests,
+    ignore = "needs Xvfb, xdotool and ImageMagick (LUMIERE_SKIP_SYSTEM_TESTS)"
+)]
 fn progressive_radiosity_shows_its_intermediate_states_and_ends_as_render_does() {
     let display = Display::start();
     let dir = tempfile::tempdir().unwrap();
@@ -339,6 +347,10 @@ fn progressive_radiosity_shows_its_intermediate_states_and_ends_as_render_does()
 }
 
 #[test]
+#[cfg_attr(
+    skip_system_tests,
+    ignore = "needs Xvfb, xdotool and ImageMagick (LUMIERE_SKIP_SYSTEM_TESTS)"
+)]
 fn the_texture_filter_key_forces_a_filter_on_every_texture() {
     let display = Display::start();
     let dir = tempfile::tempdir().unwrap();

@@ -58,6 +58,10 @@ fn pages(site: &Path) -> Vec<PathBuf> {
 /// The small gallery's pages, or with `LUMIERE_GALLERY=DIR` those of a gallery
 /// made by hand (`lumiere gallery -o DIR`, the whole catalogue).
 #[test]
+#[cfg_attr(
+    skip_system_tests,
+    ignore = "needs Chromium (LUMIERE_SKIP_SYSTEM_TESTS)"
+)]
 fn every_page_loads_whole_in_a_real_browser() {
     let site = match std::env::var_os("LUMIERE_GALLERY") {
         Some(dir) => PathBuf::from(dir),
