@@ -4,6 +4,7 @@
 
 use crate::catalogue;
 use crate::error::{Error, FileOp, Result};
+use crate::image_io::read_file;
 use crate::scene::resources::{Directory, Layered, Resources};
 use crate::scene::{self, Scene};
 use crate::shadow;
@@ -16,8 +17,14 @@ use std::path::{Path, PathBuf};
 pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
     let path = Path::new(spec);
     if spec.ends_with(".toml") || path.exists() {
-        let text =
-            std::fs::read_to_string(path).map_err(|e| Error::io(FileOp::ReadScene, path, e))?;
+        let bytes = read_file(path, FileOp::ReadScene)?;
+        let text = String::from_utf8(bytes).map_err(|_| {
+            let not_text = std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                "stream did not contain valid UTF-8",
+            );
+            Error::io(FileOp::ReadScene, path, not_text)
+        })?;
         let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
         scene_from_text(&text, spec, Some(base_dir), overrides)
     } else {

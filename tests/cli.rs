@@ -2219,3 +2219,129 @@ fn a_missing_output_directory_is_named_without_temporary_names() {
         run.stderr
     );
 }
+
+/// `args` run in `dir`, stopped (and the test failed) if it takes longer than 30 s: a
+/// read that never ends must not hang the suite.
+fn lumiere_within_30_s(args: &[&str], dir: &Path) -> Run {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(args)
+        .current_dir(dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > std::time::Duration::from_secs(30) {
+            let _ = child.kill();
+            panic!("`lumiere {}` still running after 30 s", args.join(" "));
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().unwrap();
+    Run {
+        code: out.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+#[test]
+fn inputs_that_are_not_regular_files_are_refused_without_being_read() {
+    let material_with = |texture: &str| {
+        format!(
+            "\n[textures.t]\nimage = \"{texture}\"\n\n[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\ndiffuse_texture = \"t\"\n"
+        )
+    };
+    let obj = |file: &str| format!("\n[[objects]]\nshape = \"obj\"\nfile = \"{file}\"\n");
+    let dir = workspace(&[
+        (
+            "model.obj",
+            "mtllib endless.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        ),
+        ("textured.mtl", "newmtl m\nKd 1 1 1\nmap_Kd endless.png\n"),
+        (
+            "textured.obj",
+            "mtllib textured.mtl\nusemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n",
+        ),
+    ]);
+    let d = dir.path();
+    for name in [
+        "endless.toml",
+        "endless.obj",
+        "endless.mtl",
+        "endless.png",
+        "endless.pfm",
+    ] {
+        std::os::unix::fs::symlink("/dev/zero", d.join(name)).unwrap();
+    }
+    for name in ["waiting.toml", "waiting.png", "waiting.pfm"] {
+        let made = Command::new("mkfifo").arg(d.join(name)).status().unwrap();
+        assert!(made.success());
+    }
+    let camera = CAMERA;
+    let scenes = [
+        ("obj.toml", scene(camera, &obj("endless.obj"))),
+        ("mtl.toml", scene(camera, &obj("model.obj"))),
+        ("map_kd.toml", scene(camera, &obj("textured.obj"))),
+        (
+            "texture.toml",
+            scene(camera, "").replace("[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n", "")
+                + &material_with("waiting.png"),
+        ),
+        (
+            "environment.toml",
+            scene(
+                camera,
+                "\n[environments.e]\nimage = \"endless.pfm\"\nlayout = \"lat-long\"\n",
+            ),
+        ),
+    ];
+    for (name, text) in &scenes {
+        std::fs::write(d.join(name), text).unwrap();
+    }
+    let out = d.join("out.png");
+    let out_arg = out.to_str().unwrap();
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["render", "endless.toml", "-o", out_arg],
+            "endless.toml",
+        ),
+        (
+            vec!["render", "waiting.toml", "-o", out_arg],
+            "waiting.toml",
+        ),
+        (vec!["render", "obj.toml", "-o", out_arg], "endless.obj"),
+        (vec!["render", "mtl.toml", "-o", out_arg], "endless.mtl"),
+        (vec!["render", "map_kd.toml", "-o", out_arg], "endless.png"),
+        (vec!["render", "texture.toml", "-o", out_arg], "waiting.png"),
+        (
+            vec!["render", "environment.toml", "-o", out_arg],
+            "endless.pfm",
+        ),
+        (vec!["compare", "endless.pfm", "waiting.pfm"], "endless.pfm"),
+        (vec!["compare", "waiting.png", "endless.png"], "waiting.png"),
+        (
+            vec![
+                "envmap",
+                "--from",
+                "endless.pfm",
+                "--layout",
+                "lat-long",
+                "--cube",
+                "-o",
+                out_arg,
+            ],
+            "endless.pfm",
+        ),
+    ];
+    for (args, file) in cases {
+        let run = lumiere_within_30_s(&args, d);
+        assert_clear_error(&run, "not a regular file", &out);
+        assert!(
+            run.stderr.contains(file),
+            "{args:?} names {file}: {}",
+            run.stderr
+        );
+    }
+}

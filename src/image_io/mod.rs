@@ -236,9 +236,25 @@ fn without_temporary_name(e: std::io::Error, dir: &Path) -> std::io::Error {
     }
 }
 
+/// The bytes of the file at `path`, refused unless it is a regular file: a device
+/// (`/dev/zero`) would be read without end and a FIFO would wait for a writer that
+/// may never come.
+pub fn read_file(path: &Path, op: FileOp) -> Result<Vec<u8>> {
+    let metadata = std::fs::metadata(path).map_err(|e| Error::io(op, path, e))?;
+    if !metadata.is_file() {
+        let what = if metadata.is_dir() {
+            "it is a directory"
+        } else {
+            "not a regular file (a device, a FIFO or a socket)"
+        };
+        return Err(Error::io(op, path, std::io::Error::other(what)));
+    }
+    std::fs::read(path).map_err(|e| Error::io(op, path, e))
+}
+
 /// Reads a PNG (decoded from sRGB to linear), a PFM or an OpenEXR file.
 pub fn load(path: &Path) -> Result<Image> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(FileOp::Read, path, e))?;
+    let bytes = read_file(path, FileOp::Read)?;
     match Format::of(path)? {
         Format::Png => png::decode(&bytes),
         Format::Pfm => pfm::decode(&bytes),

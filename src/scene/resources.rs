@@ -2,6 +2,7 @@
 //! catalogue embedded in the binary. Paths in a scene are relative to the scene.
 
 use crate::error::{Error, FileOp, Result};
+use crate::image_io::read_file;
 use include_dir::Dir;
 use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
@@ -17,7 +18,7 @@ pub struct Directory(pub PathBuf);
 impl Resources for Directory {
     fn read(&self, path: &Path) -> Result<Vec<u8>> {
         let full = self.0.join(path);
-        std::fs::read(&full).map_err(|e| Error::io(FileOp::Read, &full, e))
+        read_file(&full, FileOp::Read)
     }
 }
 
