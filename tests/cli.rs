@@ -1123,7 +1123,7 @@ fn buffers_as_outputs() {
         args
     };
     let run = lumiere(
-        &base(&["--shadows", "shadow-volumes", "--aov", "list", "-o", "x"]),
+        &base(&["--shadows", "shadow-volumes", "--aov", "list", "-o", "-"]),
         dir.path(),
     );
     assert_eq!(run.code, 0, "{}", run.stderr);
@@ -1187,7 +1187,7 @@ fn buffers_as_outputs() {
             "--aov",
             "list",
             "-o",
-            "x",
+            "-",
         ],
         dir.path(),
     );
@@ -2344,4 +2344,79 @@ fn inputs_that_are_not_regular_files_are_refused_without_being_read() {
             run.stderr
         );
     }
+}
+
+#[test]
+fn options_that_would_be_ignored_are_refused_or_do_what_they_say() {
+    let dir = workspace(&[]);
+    let d = dir.path();
+    let out = d.join("never.png");
+    let png = d.join("a.png");
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("golden/cornell-box.png"),
+        &png,
+    )
+    .unwrap();
+    let before = std::fs::read(&png).unwrap();
+    // A difference image written over an input: refused, the input kept.
+    let run = lumiere(&["compare", "a.png", "a.png", "--diff", "./a.png"], d);
+    assert_clear_error(&run, "--diff ./a.png: is the input a.png", &out);
+    assert_eq!(run.code, 2);
+    assert_eq!(std::fs::read(&png).unwrap(), before);
+    // Numbers that would be used as they are, to no sense.
+    for (args, fragment) in [
+        (
+            vec!["compare", "a.png", "a.png", "--gain", "-1"],
+            "'--gain <GAIN>': must be a positive number",
+        ),
+        (
+            vec!["compare", "a.png", "a.png", "--exposure", "nan"],
+            "'--exposure <EXPOSURE>': must be a positive number",
+        ),
+        (
+            vec!["bench", "--runs", "0"],
+            "'--runs <RUNS>': must be at least 1",
+        ),
+        (
+            vec!["view", "cornell-box", "--benchmark", "0"],
+            "--benchmark <N>",
+        ),
+        (
+            vec![
+                "render",
+                "cornell-box",
+                "-o",
+                "x.png",
+                "--frames",
+                "f",
+                "--frame-every",
+                "0",
+            ],
+            "'--frame-every <FRAME_EVERY>': must be at least 1",
+        ),
+        (
+            vec!["render", "cornell-box-point", "--aov", "all", "-o", "-"],
+            "--aov all writes a directory of images: give -o DIR, not -",
+        ),
+    ] {
+        let run = lumiere(&args, d);
+        assert_clear_error(&run, fragment, &out);
+    }
+    assert!(!d.join("-").exists(), "no directory named -");
+    // `--aov list -o FILE` writes the list into FILE.
+    let run = lumiere(
+        &[
+            "render",
+            "cornell-box-point",
+            "--aov",
+            "list",
+            "-o",
+            "buffers.txt",
+        ],
+        d,
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.is_empty());
+    let list = std::fs::read_to_string(d.join("buffers.txt")).unwrap();
+    assert!(list.lines().any(|l| l.starts_with("depth ")), "{list}");
 }

@@ -40,7 +40,7 @@ pub struct Args {
     #[arg(long)]
     environments: bool,
     /// Runs per measurement; the median is reported.
-    #[arg(long, default_value_t = 15)]
+    #[arg(long, default_value_t = 15, value_parser = super::at_least_one)]
     runs: usize,
 }
 

@@ -20,11 +20,12 @@ pub struct Args {
     /// Write the difference, magnified, as an image.
     #[arg(long, value_name = "OUT.png")]
     diff: Option<PathBuf>,
-    /// Magnification of the difference image.
-    #[arg(long, default_value_t = 8.0)]
+    /// Magnification of the difference image (a positive number).
+    #[arg(long, default_value_t = 8.0, value_parser = positive)]
     gain: f32,
-    /// Exposure applied to both before comparing (matters for PFM and EXR).
-    #[arg(long, default_value_t = 1.0)]
+    /// Exposure applied to both before comparing (matters for PFM and EXR; a positive
+    /// number).
+    #[arg(long, default_value_t = 1.0, value_parser = positive)]
     exposure: f32,
     /// Print the figures as JSON.
     #[arg(long)]
@@ -47,7 +48,36 @@ pub struct Args {
 #[error("{0}")]
 pub struct BeyondThresholds(String);
 
+/// A finite number above zero: a negative gain or exposure, zero or NaN would be
+/// accepted and give a meaningless picture or figures.
+fn positive(text: &str) -> std::result::Result<f32, String> {
+    match text.parse::<f32>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        Ok(_) => Err("must be a positive number".into()),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+/// Whether `output` names the same file as `input` (an existing file reached by
+/// another path, a link, counts).
+fn same_file(output: &std::path::Path, input: &std::path::Path) -> bool {
+    output == input
+        || matches!(
+            (output.canonicalize(), input.canonicalize()),
+            (Ok(a), Ok(b)) if a == b
+        )
+}
+
 pub fn run(args: Args) -> Result<()> {
+    if let Some(diff) = &args.diff
+        && let Some(input) = [&args.a, &args.b].into_iter().find(|i| same_file(diff, i))
+    {
+        bail!(
+            "--diff {}: is the input {}; write the difference to another file",
+            diff.display(),
+            input.display()
+        );
+    }
     if let Some(x) = args.max_rmse
         && !(0.0..=1.0).contains(&x)
     {

@@ -39,6 +39,16 @@ mod view;
 use anyhow::Result;
 use clap::{CommandFactory, Parser, Subcommand};
 
+/// A count that must be at least one (`--runs`, `--frame-every`): zero would be
+/// accepted and ignored, or divide by it.
+fn at_least_one(text: &str) -> std::result::Result<usize, String> {
+    match text.parse::<usize>() {
+        Ok(n) if n >= 1 => Ok(n),
+        Ok(_) => Err("must be at least 1".into()),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
 /// lumiere renders the classic scan-line algorithms as their papers did them.
 ///
 /// Every demonstration of the catalogue renders by its id from any directory:

@@ -4,7 +4,7 @@ use anyhow::{Context, Result, bail};
 use lumiere::Renderer;
 use lumiere::internals::image_io::StagedDirectory;
 use lumiere::settings::{FormFactorMethod, ShadowMethod, Solver};
-use lumiere::{ImageFormat, catalogue, load_scene, write_image};
+use lumiere::{ImageFormat, catalogue, load_scene, write_atomically, write_image};
 use std::path::PathBuf;
 
 /// Render a catalogue entry (by id) or a scene file (.toml) to PNG, PFM or EXR.
@@ -28,9 +28,10 @@ pub struct Args {
     #[arg(long, value_enum)]
     shadows: Option<ShadowMethod>,
     /// Write an intermediate buffer instead of the image, at the sample grid's size:
-    /// `--aov list` names those this scene's frame makes (polygon ids, depth,
+    /// `--aov list -o -` names those this scene's frame makes (polygon ids, depth,
     /// normals, each light's visibility, shadow-map faces, shadow-volume counts, mip
-    /// levels, hemi-cube item buffers…); `--aov all -o DIR` writes them all into DIR.
+    /// levels, hemi-cube item buffers…; `-o FILE` writes the list there); `--aov all -o
+    /// DIR` writes them all into DIR.
     /// Ids and counts are colour-mapped (PNG) or their numbers (PFM, EXR); values are
     /// linear. `shadow` is `visibility-0`.
     #[arg(long, value_name = "NAME|list|all")]
@@ -73,7 +74,7 @@ pub struct Args {
     /// DIR/convergence.gif.
     #[arg(long, value_name = "DIR")]
     frames: Option<PathBuf>,
-    #[arg(long, default_value_t = 1, requires = "frames")]
+    #[arg(long, default_value_t = 1, requires = "frames", value_parser = super::at_least_one)]
     frame_every: usize,
     /// Override any scene key, e.g. --set camera.width=64 --set render.shading=flat
     /// (array elements by index: --set objects.0.material=red). Repeatable.
@@ -84,8 +85,15 @@ pub struct Args {
 pub fn run(args: Args) -> Result<()> {
     // Fail on a bad output name before any work is done.
     let aov = args.aov.as_deref();
-    if !matches!(aov, Some("all" | "list")) {
-        ImageFormat::of(&args.output)?;
+    match aov {
+        Some("list") => {}
+        Some("all") if args.output.as_os_str() == "-" => {
+            bail!("--aov all writes a directory of images: give -o DIR, not -")
+        }
+        Some("all") => {}
+        _ => {
+            ImageFormat::of(&args.output)?;
+        }
     }
     let mut sets = Vec::new();
     if args.test_size {
@@ -147,9 +155,17 @@ pub fn run(args: Args) -> Result<()> {
             }
             Ok(write_image(&image, &args.output, exposure)?)
         }
+        // To standard output with `-o -`, else written (whole or not at all) to the file.
         Some("list") => {
-            for info in renderer.available_buffers()? {
-                outln!("{:<28} {}", info.name, info.description)?;
+            let list: String = renderer
+                .available_buffers()?
+                .iter()
+                .map(|info| format!("{:<28} {}\n", info.name, info.description))
+                .collect();
+            if args.output.as_os_str() == "-" {
+                out!("{list}")?;
+            } else {
+                write_atomically(&args.output, list.as_bytes())?;
             }
             Ok(())
         }

@@ -50,7 +50,7 @@ pub struct Args {
     sets: Vec<String>,
     /// No window: orbit the camera through N full-resolution frames with each
     /// method and print the frames per second.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     benchmark: Option<u32>,
 }
 
