@@ -2403,6 +2403,10 @@ fn options_that_would_be_ignored_are_refused_or_do_what_they_say() {
         assert_clear_error(&run, fragment, &out);
     }
     assert!(!d.join("-").exists(), "no directory named -");
+    // --test-size is an entry's: a scene file is not called a missing entry.
+    std::fs::write(d.join("s.toml"), scene(CAMERA, "")).unwrap();
+    let run = lumiere(&["render", "s.toml", "--test-size", "-o", "never.png"], d);
+    assert_clear_error(&run, "--test-size: s.toml is a scene file", &out);
     // `--aov list -o FILE` writes the list into FILE.
     let run = lumiere(
         &[

@@ -97,6 +97,13 @@ pub fn run(args: Args) -> Result<()> {
     }
     let mut sets = Vec::new();
     if args.test_size {
+        let path = std::path::Path::new(&args.scene);
+        if args.scene.ends_with(".toml") || path.exists() {
+            bail!(
+                "--test-size: {} is a scene file; the test size is a catalogue entry's (its golden image's)",
+                args.scene
+            );
+        }
         let a = catalogue::entry(&args.scene)?.algorithm;
         sets.push(format!("camera.width={}", a.test_width));
         sets.push(format!("camera.height={}", a.test_height));
