@@ -1239,16 +1239,21 @@ fn a_method_refuses_a_light_it_cannot_shadow() {
     assert_eq!(run.code, 0, "{}", run.stderr);
 }
 
-/// Runs the binary with its standard output closed before it writes: a reader that
-/// went away (`lumiere list | head -1`).
-fn lumiere_into_closed_pipe(args: &[&str], dir: &Path) -> Run {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+/// The binary started in `dir`, its standard output and error piped.
+fn spawned(args: &[&str], dir: &Path) -> std::process::Child {
+    Command::new(env!("CARGO_BIN_EXE_lumiere"))
         .args(args)
         .current_dir(dir)
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
         .spawn()
-        .expect("the binary runs");
+        .expect("the binary runs")
+}
+
+/// Runs the binary with its standard output closed before it writes: a reader that
+/// went away (`lumiere list | head -1`).
+fn lumiere_into_closed_pipe(args: &[&str], dir: &Path) -> Run {
+    let mut child = spawned(args, dir);
     drop(child.stdout.take());
     let out = child.wait_with_output().expect("the binary ends");
     Run {
@@ -2223,13 +2228,7 @@ fn a_missing_output_directory_is_named_without_temporary_names() {
 /// `args` run in `dir`, stopped (and the test failed) if it takes longer than 30 s: a
 /// read that never ends must not hang the suite.
 fn lumiere_within_30_s(args: &[&str], dir: &Path) -> Run {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_lumiere"))
-        .args(args)
-        .current_dir(dir)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("the binary runs");
+    let mut child = spawned(args, dir);
     let start = std::time::Instant::now();
     while child.try_wait().unwrap().is_none() {
         if start.elapsed() > std::time::Duration::from_secs(30) {
