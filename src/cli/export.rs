@@ -43,20 +43,13 @@ pub fn run(args: Args) -> Result<()> {
         integrator: args.integrator,
         area_samples: args.area_samples,
     };
-    let extension = options.format.extension();
-    if args.output.extension().is_none_or(|e| e != extension) {
-        anyhow::bail!(
-            "{}: a {} scene is written as .{extension}",
-            args.output.display(),
-            options.format.renderer()
-        );
-    }
+    // A wrong extension is refused before the scene is loaded.
+    export::check_output(options.format, &args.output)?;
     let mut sets = args.sets.clone();
     sets.extend(args.size.sets());
     let scene = load_scene(&args.scene, &sets)?;
-    for warning in export::left_out(&scene, options.format) {
+    for warning in export::export(&scene, &options, &args.output)? {
         eprintln!("warning: export: {warning}");
     }
-    export::export(&scene, &options, &args.output)?;
     Ok(())
 }

@@ -86,11 +86,10 @@ pub fn run(args: Args) -> Result<()> {
     // Fail on a bad output name before any work is done.
     let aov = args.aov.as_deref();
     match aov {
-        Some("list") => {}
         Some("all") if args.output.as_os_str() == "-" => {
             bail!("--aov all writes a directory of images: give -o DIR, not -")
         }
-        Some("all") => {}
+        Some("all" | "list") => {}
         _ => {
             ImageFormat::of(&args.output)?;
         }

@@ -81,21 +81,28 @@ impl Options {
     }
 }
 
-/// Writes `scene` at `output` (a `.pov` or `.xml` file; Mitsuba's meshes go into the
-/// folder `OUT-meshes/` beside it), each file written whole or not at all. Returns
-/// what the export left out, a line each (see `left_out`).
-pub fn export(scene: &Scene, options: &Options, output: &Path) -> Result<Vec<String>> {
-    let extension = options.format.extension();
+/// Refuses an `output` whose extension is not `format`'s (`.pov`, `.xml`): a caller
+/// may ask before the scene is loaded.
+pub fn check_output(format: Format, output: &Path) -> Result<()> {
+    let extension = format.extension();
     if output.extension().is_none_or(|e| e != extension) {
         return Err(Error::Invalid {
             key: "output".into(),
             message: format!(
                 "{}: a {} scene is written as .{extension}",
                 output.display(),
-                options.format.renderer()
+                format.renderer()
             ),
         });
     }
+    Ok(())
+}
+
+/// Writes `scene` at `output` (a `.pov` or `.xml` file; Mitsuba's meshes go into the
+/// folder `OUT-meshes/` beside it), each file written whole or not at all. Returns
+/// what the export left out, a line each (see `left_out`).
+pub fn export(scene: &Scene, options: &Options, output: &Path) -> Result<Vec<String>> {
+    check_output(options.format, output)?;
     let meshes = meshes(scene);
     match options.format {
         Format::Pov => {
