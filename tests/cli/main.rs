@@ -1,73 +1,11 @@
 //! The binary as a user meets it: subcommands, and one clear error line (never a
 //! panic, never a half-written file) for every kind of bad input.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod robustness;
+mod support;
 
-struct Run {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn lumiere(args: &[&str], dir: &Path) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_lumiere"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the binary runs");
-    Run {
-        code: out.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
-}
-
-/// A fresh directory holding `files` (name, contents).
-fn workspace(files: &[(&str, &str)]) -> tempfile::TempDir {
-    let dir = tempfile::tempdir().unwrap();
-    for (name, text) in files {
-        std::fs::write(dir.path().join(name), text).unwrap();
-    }
-    dir
-}
-
-/// A valid scene with `extra` appended, its camera given by `camera`.
-fn scene(camera: &str, extra: &str) -> String {
-    format!(
-        "[camera]\n{camera}\nwidth = 16\nheight = 12\n\n[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\n\
-         [[lights]]\ntype = \"point\"\nposition = [0.0, 2.0, 2.0]\nintensity = [5.0, 5.0, 5.0]\n\n\
-         [[objects]]\nshape = \"quad\"\nmaterial = \"grey\"\n{extra}"
-    )
-}
-
-const CAMERA: &str = "eye = [0.0, 1.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0";
-
-/// The command failed with exactly one line, `error: …` containing `fragment`, and
-/// wrote no output file.
-fn assert_clear_error(run: &Run, fragment: &str, output: &Path) {
-    assert_ne!(run.code, 0, "should fail: {}", run.stderr);
-    assert!(!run.stderr.contains("panicked"), "panic: {}", run.stderr);
-    let lines: Vec<&str> = run.stderr.lines().collect();
-    assert_eq!(lines.len(), 1, "one line expected, got: {}", run.stderr);
-    assert!(lines[0].starts_with("error: "), "{}", lines[0]);
-    assert!(
-        lines[0].contains(fragment),
-        "`{fragment}` not in: {}",
-        lines[0]
-    );
-    assert!(!output.exists(), "{} was written", output.display());
-}
-
-fn render_error(files: &[(&str, &str)], args: &[&str], fragment: &str) {
-    let dir = workspace(files);
-    let output: PathBuf = dir.path().join("out.png");
-    let mut all = vec!["render"];
-    all.extend_from_slice(args);
-    all.extend_from_slice(&["-o", "out.png"]);
-    let run = lumiere(&all, dir.path());
-    assert_clear_error(&run, fragment, &output);
-}
+use std::path::Path;
+use support::*;
 
 #[test]
 fn renders_a_catalogue_entry_from_any_directory() {
@@ -705,7 +643,7 @@ fn bad_textures_and_mappings() {
 
 #[test]
 fn a_textured_scene_renders() {
-    let card = include_bytes!("../algorithms/textures/test-card.png");
+    let card = include_bytes!("../../algorithms/textures/test-card.png");
     let text = textured_scene("image = \"card.png\"\nfilter = \"summed-area\"");
     let dir = workspace(&[("s.toml", &text)]);
     std::fs::write(dir.path().join("card.png"), card).unwrap();
@@ -1240,16 +1178,6 @@ fn a_method_refuses_a_light_it_cannot_shadow() {
 }
 
 /// The binary started in `dir`, its standard output and error piped.
-fn spawned(args: &[&str], dir: &Path) -> std::process::Child {
-    Command::new(env!("CARGO_BIN_EXE_lumiere"))
-        .args(args)
-        .current_dir(dir)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("the binary runs")
-}
-
 /// Runs the binary with its standard output closed before it writes: a reader that
 /// went away (`lumiere list | head -1`).
 fn lumiere_into_closed_pipe(args: &[&str], dir: &Path) -> Run {
@@ -2225,201 +2153,3 @@ fn a_missing_output_directory_is_named_without_temporary_names() {
     );
 }
 
-/// `args` run in `dir`, stopped (and the test failed) if it takes longer than 30 s: a
-/// read that never ends must not hang the suite.
-fn lumiere_within_30_s(args: &[&str], dir: &Path) -> Run {
-    let mut child = spawned(args, dir);
-    let start = std::time::Instant::now();
-    while child.try_wait().unwrap().is_none() {
-        if start.elapsed() > std::time::Duration::from_secs(30) {
-            let _ = child.kill();
-            panic!("`lumiere {}` still running after 30 s", args.join(" "));
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
-    let out = child.wait_with_output().unwrap();
-    Run {
-        code: out.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
-}
-
-#[test]
-fn inputs_that_are_not_regular_files_are_refused_without_being_read() {
-    let material_with = |texture: &str| {
-        format!(
-            "\n[textures.t]\nimage = \"{texture}\"\n\n[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\ndiffuse_texture = \"t\"\n"
-        )
-    };
-    let obj = |file: &str| format!("\n[[objects]]\nshape = \"obj\"\nfile = \"{file}\"\n");
-    let dir = workspace(&[
-        (
-            "model.obj",
-            "mtllib endless.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
-        ),
-        ("textured.mtl", "newmtl m\nKd 1 1 1\nmap_Kd endless.png\n"),
-        (
-            "textured.obj",
-            "mtllib textured.mtl\nusemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n",
-        ),
-    ]);
-    let d = dir.path();
-    for name in [
-        "endless.toml",
-        "endless.obj",
-        "endless.mtl",
-        "endless.png",
-        "endless.pfm",
-    ] {
-        std::os::unix::fs::symlink("/dev/zero", d.join(name)).unwrap();
-    }
-    for name in ["waiting.toml", "waiting.png", "waiting.pfm"] {
-        let made = Command::new("mkfifo").arg(d.join(name)).status().unwrap();
-        assert!(made.success());
-    }
-    let camera = CAMERA;
-    let scenes = [
-        ("obj.toml", scene(camera, &obj("endless.obj"))),
-        ("mtl.toml", scene(camera, &obj("model.obj"))),
-        ("map_kd.toml", scene(camera, &obj("textured.obj"))),
-        (
-            "texture.toml",
-            scene(camera, "").replace("[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n", "")
-                + &material_with("waiting.png"),
-        ),
-        (
-            "environment.toml",
-            scene(
-                camera,
-                "\n[environments.e]\nimage = \"endless.pfm\"\nlayout = \"lat-long\"\n",
-            ),
-        ),
-    ];
-    for (name, text) in &scenes {
-        std::fs::write(d.join(name), text).unwrap();
-    }
-    let out = d.join("out.png");
-    let out_arg = out.to_str().unwrap();
-    let cases: Vec<(Vec<&str>, &str)> = vec![
-        (
-            vec!["render", "endless.toml", "-o", out_arg],
-            "endless.toml",
-        ),
-        (
-            vec!["render", "waiting.toml", "-o", out_arg],
-            "waiting.toml",
-        ),
-        (vec!["render", "obj.toml", "-o", out_arg], "endless.obj"),
-        (vec!["render", "mtl.toml", "-o", out_arg], "endless.mtl"),
-        (vec!["render", "map_kd.toml", "-o", out_arg], "endless.png"),
-        (vec!["render", "texture.toml", "-o", out_arg], "waiting.png"),
-        (
-            vec!["render", "environment.toml", "-o", out_arg],
-            "endless.pfm",
-        ),
-        (vec!["compare", "endless.pfm", "waiting.pfm"], "endless.pfm"),
-        (vec!["compare", "waiting.png", "endless.png"], "waiting.png"),
-        (
-            vec![
-                "envmap",
-                "--from",
-                "endless.pfm",
-                "--layout",
-                "lat-long",
-                "--cube",
-                "-o",
-                out_arg,
-            ],
-            "endless.pfm",
-        ),
-    ];
-    for (args, file) in cases {
-        let run = lumiere_within_30_s(&args, d);
-        assert_clear_error(&run, "not a regular file", &out);
-        assert!(
-            run.stderr.contains(file),
-            "{args:?} names {file}: {}",
-            run.stderr
-        );
-    }
-}
-
-#[test]
-fn options_that_would_be_ignored_are_refused_or_do_what_they_say() {
-    let dir = workspace(&[]);
-    let d = dir.path();
-    let out = d.join("never.png");
-    let png = d.join("a.png");
-    std::fs::copy(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("golden/cornell-box.png"),
-        &png,
-    )
-    .unwrap();
-    let before = std::fs::read(&png).unwrap();
-    // A difference image written over an input: refused, the input kept.
-    let run = lumiere(&["compare", "a.png", "a.png", "--diff", "./a.png"], d);
-    assert_clear_error(&run, "--diff ./a.png: is the input a.png", &out);
-    assert_eq!(run.code, 2);
-    assert_eq!(std::fs::read(&png).unwrap(), before);
-    // Numbers that would be used as they are, to no sense.
-    for (args, fragment) in [
-        (
-            vec!["compare", "a.png", "a.png", "--gain", "-1"],
-            "'--gain <GAIN>': must be a positive number",
-        ),
-        (
-            vec!["compare", "a.png", "a.png", "--exposure", "nan"],
-            "'--exposure <EXPOSURE>': must be a positive number",
-        ),
-        (
-            vec!["bench", "--runs", "0"],
-            "'--runs <RUNS>': must be at least 1",
-        ),
-        (
-            vec!["view", "cornell-box", "--benchmark", "0"],
-            "--benchmark <N>",
-        ),
-        (
-            vec![
-                "render",
-                "cornell-box",
-                "-o",
-                "x.png",
-                "--frames",
-                "f",
-                "--frame-every",
-                "0",
-            ],
-            "'--frame-every <FRAME_EVERY>': must be at least 1",
-        ),
-        (
-            vec!["render", "cornell-box-point", "--aov", "all", "-o", "-"],
-            "--aov all writes a directory of images: give -o DIR, not -",
-        ),
-    ] {
-        let run = lumiere(&args, d);
-        assert_clear_error(&run, fragment, &out);
-    }
-    assert!(!d.join("-").exists(), "no directory named -");
-    // --test-size is an entry's: a scene file is not called a missing entry.
-    std::fs::write(d.join("s.toml"), scene(CAMERA, "")).unwrap();
-    let run = lumiere(&["render", "s.toml", "--test-size", "-o", "never.png"], d);
-    assert_clear_error(&run, "--test-size: s.toml is a scene file", &out);
-    // `--aov list -o FILE` writes the list into FILE.
-    let run = lumiere(
-        &[
-            "render",
-            "cornell-box-point",
-            "--aov",
-            "list",
-            "-o",
-            "buffers.txt",
-        ],
-        d,
-    );
-    assert_eq!(run.code, 0, "{}", run.stderr);
-    assert!(run.stdout.is_empty());
-    let list = std::fs::read_to_string(d.join("buffers.txt")).unwrap();
-    assert!(list.lines().any(|l| l.starts_with("depth ")), "{list}");
-}
