@@ -30,23 +30,12 @@ impl MediumWork {
             .zip(direct)
             .map(|(light, &direct)| direct.then(|| LightVolumes::new(scene, light)).flatten())
             .collect();
-        let bounds = crate::geometry::bvh::Aabb::of(
-            scene
-                .polygons
-                .iter()
-                .flat_map(|p| p.positions())
-                .chain([scene.camera.eye]),
-        );
-        let size = (bounds.max - bounds.min).length().max(1e-9);
+        let size = scene_size(scene);
         let (rays, step) = match medium.method {
             MediumMethod::LightVolumes => (None, 0.0),
             MediumMethod::RayMarching => (
                 Some(plan.occluders.clone().expect("planned for ray marching")),
-                if medium.march_step > 0.0 {
-                    medium.march_step
-                } else {
-                    size / 500.0
-                },
+                march_step(medium, size),
             ),
         };
         Some(MediumWork {
@@ -102,4 +91,53 @@ impl MediumWork {
             }
         }
     }
+}
+
+/// The diagonal of the box around the scene's polygons and the eye.
+fn scene_size(scene: &Scene) -> f64 {
+    let bounds = crate::geometry::bvh::Aabb::of(
+        scene
+            .polygons
+            .iter()
+            .flat_map(|p| p.positions())
+            .chain([scene.camera.eye]),
+    );
+    (bounds.max - bounds.min).length().max(1e-9)
+}
+
+/// Ray marching's step: the scene's, or a 500th of its size.
+fn march_step(medium: &crate::settings::MediumSettings, size: f64) -> f64 {
+    if medium.march_step > 0.0 {
+        medium.march_step
+    } else {
+        size / 500.0
+    }
+}
+
+/// Refuses, before any work, a march whose steps would exceed
+/// `medium.max_march_steps`: a viewing ray is taken to cross about the scene's size,
+/// with a shadow ray per light at each step.
+pub(super) fn check_march(scene: &Scene) -> crate::error::Result<()> {
+    let Some(medium) = scene
+        .medium
+        .as_ref()
+        .filter(|m| m.extinction > 0.0 && m.method == MediumMethod::RayMarching)
+    else {
+        return Ok(());
+    };
+    let size = scene_size(scene);
+    let step = march_step(medium, size);
+    let side = f64::from(scene.render.supersample);
+    let samples = f64::from(scene.camera.width) * f64::from(scene.camera.height) * side * side;
+    let lights = scene.lights.len().max(1) as f64;
+    let steps = samples * lights * (size / step);
+    crate::error::ensure_valid!(
+        steps <= medium.max_march_steps,
+        "medium.march_step",
+        "medium.march_step = {step:e} would take about {steps:.1e} steps ({samples} samples x {lights} light(s) x {:.1e} steps across the scene's {size:.3e}), more than medium.max_march_steps = {:e} allows; use a step of at least {:.3e}",
+        size / step,
+        medium.max_march_steps,
+        step * steps / medium.max_march_steps
+    );
+    Ok(())
 }

@@ -209,8 +209,9 @@ impl Renderer {
 
     /// Refuses, before any work, a shadow method that cannot shadow one of the
     /// lights the frame shadows (and, under the two-pass methods, materials their
-    /// first pass cannot carry).
+    /// first pass cannot carry), and a ray march over its step budget.
     pub fn check(&self) -> Result<()> {
+        super::medium::check_march(&self.scene)?;
         let method = shadow::method(self.scene.shadows.method);
         if self.ray_traced().is_none() {
             let direct = lit_directly(
@@ -272,6 +273,7 @@ impl Renderer {
     /// Everything the next frame needs but the scene: the one place that decides
     /// which integrator runs, and that solves radiosity when none is kept.
     fn plan(&self) -> Result<FramePlan> {
+        super::medium::check_march(&self.scene)?;
         let integrator = self.integrator()?;
         let direct = integrator.direct_lights(&self.scene);
         let shadows = self.shadows_of(&direct)?;

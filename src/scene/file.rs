@@ -88,6 +88,8 @@ pub struct MediumFile {
     #[serde(default = "nodes")]
     pub nodes: u32,
     pub march_step: Option<f64>,
+    #[serde(default = "max_march_steps")]
+    pub max_march_steps: f64,
 }
 
 #[derive(Debug, Deserialize)]
@@ -95,6 +97,10 @@ pub struct MediumFile {
 pub struct ExtentFile {
     pub min: Vec3File,
     pub max: Vec3File,
+}
+
+fn max_march_steps() -> f64 {
+    crate::settings::MAX_MARCH_STEPS
 }
 
 fn albedo() -> f64 {

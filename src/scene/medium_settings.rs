@@ -58,6 +58,17 @@ pub fn from_file(m: &MediumFile) -> Result<MediumSettings> {
         "medium.march_step",
         "medium.march_step must be a positive length (0: a 500th of the scene's size), got {march_step}"
     );
+    ensure_valid!(
+        march_step == 0.0 || m.method == crate::settings::MediumMethod::RayMarching,
+        "medium.march_step",
+        "medium.march_step is ray marching's step; light volumes integrate each lit interval without one (set method = \"ray-marching\" to march)"
+    );
+    ensure_valid!(
+        m.max_march_steps.is_finite() && m.max_march_steps >= 1.0,
+        "medium.max_march_steps",
+        "medium.max_march_steps must be a count of at least 1, got {}",
+        m.max_march_steps
+    );
     Ok(MediumSettings {
         extinction: m.extinction,
         albedo: m.albedo,
@@ -67,5 +78,6 @@ pub fn from_file(m: &MediumFile) -> Result<MediumSettings> {
         method: m.method,
         nodes: m.nodes,
         march_step,
+        max_march_steps: m.max_march_steps,
     })
 }

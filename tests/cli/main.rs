@@ -2152,4 +2152,3 @@ fn a_missing_output_directory_is_named_without_temporary_names() {
         run.stderr
     );
 }
-

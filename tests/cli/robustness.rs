@@ -207,3 +207,54 @@ fn a_scene_of_200000_objects_loads_in_linear_time() {
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert!(dir.path().join("many.png").exists());
 }
+
+/// A ray march is estimated before it starts and refused over its budget, with the
+/// smallest step that fits; its keys are refused where they would be ignored.
+#[test]
+fn a_ray_march_over_its_budget_is_refused_before_it_starts() {
+    let marched = |extra: &str| {
+        scene(
+            CAMERA,
+            &format!("\n[medium]\nextinction = 0.1\nmethod = \"ray-marching\"\n{extra}"),
+        )
+    };
+    let endless = marched("march_step = 1e-9\n");
+    let dir = workspace(&[("s.toml", &endless)]);
+    let run = lumiere_within_30_s(&["render", "s.toml", "-o", "out.png"], dir.path());
+    assert_clear_error(
+        &run,
+        "medium.march_step = 1e-9 would take about",
+        &dir.path().join("out.png"),
+    );
+    assert!(
+        run.stderr.contains("use a step of at least"),
+        "{}",
+        run.stderr
+    );
+    // The same march within a raised budget is not refused by the estimate.
+    let run = lumiere(
+        &[
+            "render",
+            "s.toml",
+            "--set",
+            "medium.max_march_steps=1e30",
+            "--aov",
+            "list",
+            "-o",
+            "-",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    render_error(
+        &[("s.toml", &marched("max_march_steps = nan\n"))],
+        &["s.toml"],
+        "medium.max_march_steps must be a count of at least 1, got NaN",
+    );
+    let volumes = scene(CAMERA, "\n[medium]\nextinction = 0.1\nmarch_step = 0.5\n");
+    render_error(
+        &[("s.toml", &volumes)],
+        &["s.toml"],
+        "medium.march_step is ray marching's step; light volumes integrate each lit interval without one",
+    );
+}

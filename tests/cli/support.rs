@@ -98,4 +98,3 @@ pub fn lumiere_within_30_s(args: &[&str], dir: &Path) -> Run {
         stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
     }
 }
-
