@@ -184,6 +184,19 @@ pub enum Filter {
     SummedArea,
 }
 
+impl Filter {
+    /// The filter's name in a scene file.
+    pub fn name(self) -> &'static str {
+        match self {
+            Filter::Nearest => "nearest",
+            Filter::Bilinear => "bilinear",
+            Filter::MipNearest => "mip-nearest",
+            Filter::Trilinear => "trilinear",
+            Filter::SummedArea => "summed-area",
+        }
+    }
+}
+
 /// Which radiosity solver.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]

@@ -91,15 +91,26 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
     let mut builder = Builder {
         eye: camera.eye,
         geometry_budget: file.render.max_memory_mb << 20,
+        texture_budget: textures::TextureBudget {
+            limit: file.render.max_memory_mb << 20,
+            ..Default::default()
+        },
         ..Default::default()
     };
+    let mut prepared = Vec::new();
     for (name, t) in &file.textures {
+        prepared.push(textures::prepare(
+            name,
+            t,
+            resources,
+            &mut builder.texture_budget,
+        )?);
+    }
+    for (texture, name) in prepared.into_iter().zip(file.textures.keys()) {
         builder
             .texture_index
             .insert(name.clone(), builder.textures.len());
-        builder
-            .textures
-            .push(Arc::new(textures::load(name, t, resources)?));
+        builder.textures.push(Arc::new(texture.load()?));
     }
     let mut environments = Vec::new();
     let mut hidden = Vec::new();
@@ -216,8 +227,10 @@ struct Builder {
     polygons: Vec<Polygon>,
     /// The vertices of `polygons`, counted.
     vertices: u64,
-    /// Bytes the geometry may take (`render.max_memory_mb`).
+    /// Bytes the geometry may take (`render.max_memory_mb`, less the textures').
     geometry_budget: u64,
+    /// What the textures take of the same budget.
+    texture_budget: textures::TextureBudget,
     warnings: Vec<String>,
 }
 
@@ -340,7 +353,9 @@ impl Builder {
             wrap: Default::default(),
             filter: Default::default(),
         };
-        let texture = textures::load(&name, &t, res)
+        self.texture_budget.geometry = self.geometry_bytes(0, 0);
+        let texture = textures::prepare(&name, &t, res, &mut self.texture_budget)
+            .and_then(textures::Prepared::load)
             .map_err(|e| e.within(format!("{obj}: its MTL file's map_Kd")))?;
         self.texture_index.insert(name, self.textures.len());
         self.textures.push(Arc::new(texture));
@@ -410,10 +425,10 @@ impl Builder {
     /// that made them).
     fn check_geometry(&self, faces: &Faces, key: &str, value: &str) -> Result<()> {
         let polygons = (self.polygons.len() + faces.len()) as u64;
-        let vertices = self.vertices + faces.iter().map(|f| f.len() as u64).sum::<u64>();
-        let needed = polygons
-            .saturating_mul(BYTES_PER_POLYGON)
-            .saturating_add(vertices.saturating_mul(BYTES_PER_VERTEX));
+        let vertices = faces.iter().map(|f| f.len() as u64).sum::<u64>();
+        let needed = self
+            .geometry_bytes(faces.len() as u64, vertices)
+            .saturating_add(self.texture_budget.used);
         if needed <= self.geometry_budget {
             return Ok(());
         }
@@ -430,6 +445,13 @@ impl Builder {
             suggestion: "use lower resolutions or fewer objects, or raise render.max_memory_mb"
                 .into(),
         })))
+    }
+
+    /// The bytes the polygons so far take with `polygons` more (of `vertices`).
+    fn geometry_bytes(&self, polygons: u64, vertices: u64) -> u64 {
+        (self.polygons.len() as u64 + polygons)
+            .saturating_mul(BYTES_PER_POLYGON)
+            .saturating_add((self.vertices + vertices).saturating_mul(BYTES_PER_VERTEX))
     }
 
     fn push_object(&mut self, name: String, o: &ObjectFile, frame: ObjectFrame) -> usize {

@@ -18,7 +18,100 @@ use std::path::Path;
 /// Default texels per side of a procedural texture sampled into an image.
 const DEFAULT_RESOLUTION: u32 = 256;
 
-pub fn load(name: &str, t: &TextureFile, resources: &dyn Resources) -> Result<Texture> {
+/// What the scene's textures may take of `render.max_memory_mb`, and have taken.
+#[derive(Default)]
+pub struct TextureBudget {
+    /// Bytes the textures loaded take.
+    pub used: u64,
+    /// Bytes the geometry takes.
+    pub geometry: u64,
+    /// Bytes allowed.
+    pub limit: u64,
+}
+
+impl TextureBudget {
+    /// Takes what a `width` x `height` texture needs under `filter` (with `decoding`
+    /// bytes a texel while an image is decoded), or refuses it naming `key = value`.
+    fn take(
+        &mut self,
+        (key, value): (String, String),
+        (width, height): (u32, u32),
+        filter: crate::settings::Filter,
+        decoding: u64,
+    ) -> Result<()> {
+        let kept = Texture::bytes_kept(width, height, filter);
+        let transient = u64::from(width) * u64::from(height) * decoding;
+        let needed = (self.used + self.geometry)
+            .saturating_add(kept)
+            .saturating_add(transient);
+        if needed > self.limit {
+            return Err(Error::OverBudget(Box::new(crate::error::OverBudget {
+                key,
+                value,
+                what: format!(
+                    "its {width}x{height} texels under the {} filter, with the scene's other textures",
+                    filter.name()
+                ),
+                needed,
+                budget: self.limit,
+                budget_key: "render.max_memory_mb".into(),
+                suggestion: "use a smaller image or resolution, or a filter without a pyramid or table (nearest, bilinear), or raise render.max_memory_mb".into(),
+            })));
+        }
+        self.used += kept;
+        Ok(())
+    }
+}
+
+/// While an image is decoded it is held in its own format (up to 16-bit RGBA, 8 bytes
+/// a texel) and as 8-bit RGB (3) beside the texels.
+const DECODING_BYTES_PER_TEXEL: u64 = 11;
+
+/// A texture checked and its memory taken from the budget, not yet decoded or
+/// generated: a scene's textures are all counted before any is made.
+pub struct Prepared {
+    name: String,
+    source: Source,
+    wrap: crate::texture::Wrap,
+    filter: crate::settings::Filter,
+}
+
+enum Source {
+    Image { path: String, bytes: Vec<u8> },
+    Procedural(Procedural, u32),
+}
+
+impl Prepared {
+    /// The texture: its image decoded, or its pattern sampled.
+    pub fn load(self) -> Result<Texture> {
+        let (texels, procedural) = match self.source {
+            Source::Image { path, bytes } => {
+                let texels = Texels::decode(&bytes).map_err(|e| {
+                    e.at_path(Path::new(&path))
+                        .within(format!("textures.{}", self.name))
+                })?;
+                (texels, None)
+            }
+            Source::Procedural(p, n) => (Texels::generate(n, n, |uv| p.color(uv)), Some(p)),
+        };
+        Ok(Texture::new(
+            &self.name,
+            texels,
+            procedural,
+            self.wrap,
+            self.filter,
+        ))
+    }
+}
+
+/// Checks `[textures.NAME]`, reads its image's header and takes its memory from
+/// `budget`.
+pub fn prepare(
+    name: &str,
+    t: &TextureFile,
+    resources: &dyn Resources,
+    budget: &mut TextureBudget,
+) -> Result<Prepared> {
     let what = |key: &str| format!("textures.{name}.{key}");
     let procedural_keys = [
         ("cells", t.cells.is_some()),
@@ -27,7 +120,7 @@ pub fn load(name: &str, t: &TextureFile, resources: &dyn Resources) -> Result<Te
         ("seed", t.seed.is_some()),
         ("resolution", t.resolution.is_some()),
     ];
-    let (texels, procedural) = match (&t.image, t.procedural) {
+    let source = match (&t.image, t.procedural) {
         (Some(_), Some(_)) => {
             return Err(Error::invalid(
                 format!("textures.{name}"),
@@ -50,11 +143,20 @@ pub fn load(name: &str, t: &TextureFile, resources: &dyn Resources) -> Result<Te
             let bytes = resources
                 .read(Path::new(path))
                 .map_err(|e| e.within(what("image")))?;
-            let texels = Texels::decode(&bytes).map_err(|e| {
+            let size = crate::texture::texels::image_size(&bytes).map_err(|e| {
                 e.at_path(Path::new(path))
                     .within(format!("textures.{name}"))
             })?;
-            (texels, None)
+            budget.take(
+                (what("image"), path.clone()),
+                size,
+                t.filter,
+                DECODING_BYTES_PER_TEXEL,
+            )?;
+            Source::Image {
+                path: path.clone(),
+                bytes,
+            }
         }
         (None, Some(kind)) => {
             let p = procedural(name, kind, t)?;
@@ -65,10 +167,16 @@ pub fn load(name: &str, t: &TextureFile, resources: &dyn Resources) -> Result<Te
                 "{} must be between 1 and 8192, got {n}",
                 what("resolution")
             );
-            (Texels::generate(n, n, |uv| p.color(uv)), Some(p))
+            budget.take((what("resolution"), n.to_string()), (n, n), t.filter, 0)?;
+            Source::Procedural(p, n)
         }
     };
-    Ok(Texture::new(name, texels, procedural, t.wrap, t.filter))
+    Ok(Prepared {
+        name: name.to_string(),
+        source,
+        wrap: t.wrap,
+        filter: t.filter,
+    })
 }
 
 fn procedural(name: &str, kind: ProceduralKind, t: &TextureFile) -> Result<Procedural> {

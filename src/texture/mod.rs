@@ -63,6 +63,22 @@ impl std::fmt::Debug for Texture {
 impl Texture {
     /// A texture whose pre-filtered forms (pyramid, summed-area table) are built now if
     /// its filter uses them.
+    /// The bytes a `width` x `height` texture keeps under `filter`: its linear texels
+    /// (12 bytes each) and the mip-map pyramid (its level 0 resampled to the next
+    /// powers of two, then a third more: 16 bytes a texel of that level 0) or the
+    /// summed-area table (three f64 sums, 24 bytes a texel).
+    pub fn bytes_kept(width: u32, height: u32, filter: Filter) -> u64 {
+        let texels = u64::from(width) * u64::from(height);
+        let table = match filter {
+            Filter::MipNearest | Filter::Trilinear => {
+                u64::from(width.next_power_of_two()) * u64::from(height.next_power_of_two()) * 16
+            }
+            Filter::SummedArea => texels * 24,
+            Filter::Nearest | Filter::Bilinear => 0,
+        };
+        texels * 12 + table
+    }
+
     pub fn new(
         name: &str,
         texels: Texels,

@@ -34,6 +34,30 @@ impl Wrap {
 /// Largest side of a texture image accepted.
 pub const MAX_TEXTURE_SIDE: u32 = 16_384;
 
+/// The PNG or JPEG header's width and height, without decoding the image (so that a
+/// size can be refused before its memory is taken).
+pub fn image_size(bytes: &[u8]) -> Result<(u32, u32)> {
+    let format = texture_format(bytes)?;
+    // A PNG's first chunk is IHDR, width and height big-endian at bytes 16 and 20
+    // (the PNG decoder's own reader looks on for the first data chunk).
+    if format == image::ImageFormat::Png && bytes.len() >= 24 && &bytes[12..16] == b"IHDR" {
+        let word = |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().expect("4 bytes"));
+        return Ok((word(16), word(20)));
+    }
+    image::ImageReader::with_format(std::io::Cursor::new(bytes), format)
+        .into_dimensions()
+        .map_err(|e| Error::image(format!("not a readable PNG or JPEG image: {e}")))
+}
+
+/// Only the formats a texture is documented to be: the other decoders the image crate
+/// carries (EXR's among them) trust sizes their headers declare.
+fn texture_format(bytes: &[u8]) -> Result<image::ImageFormat> {
+    image::guess_format(bytes)
+        .ok()
+        .filter(|f| matches!(f, image::ImageFormat::Png | image::ImageFormat::Jpeg))
+        .ok_or_else(|| Error::image("not a PNG or JPEG image"))
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Texels {
     pub width: u32,
@@ -46,12 +70,7 @@ impl Texels {
     /// Decodes a PNG or JPEG file's bytes; 8-bit channels are sRGB-encoded, so they are
     /// decoded to linear radiometric values.
     pub fn decode(bytes: &[u8]) -> Result<Texels> {
-        // Only the formats a texture is documented to be: the other decoders the
-        // image crate carries (EXR's among them) trust sizes their headers declare.
-        let format = image::guess_format(bytes)
-            .ok()
-            .filter(|f| matches!(f, image::ImageFormat::Png | image::ImageFormat::Jpeg))
-            .ok_or_else(|| Error::image("not a PNG or JPEG image"))?;
+        let format = texture_format(bytes)?;
         let image = image::load_from_memory_with_format(bytes, format)
             .map_err(|e| Error::image(format!("not a readable PNG or JPEG image: {e}")))?;
         let (width, height) = (image.width(), image.height());

@@ -258,3 +258,53 @@ fn a_ray_march_over_its_budget_is_refused_before_it_starts() {
         "medium.march_step is ray marching's step; light volumes integrate each lit interval without one",
     );
 }
+
+/// Textures are counted against render.max_memory_mb from their headers and
+/// resolutions before any is decoded or generated: an 8193² image under the
+/// trilinear filter (its pyramid resampled to 16384²) and three 8192² procedural
+/// textures (5.5 GB resident before) are refused at once.
+#[test]
+fn textures_are_refused_over_the_memory_budget_before_they_are_made() {
+    let textured = |textures: &str| {
+        format!(
+            "{}\n{textures}\n[materials.m]\ndiffuse = [0.5, 0.5, 0.5]\ndiffuse_texture = \"t\"\n",
+            scene(CAMERA, "").replace("material = \"grey\"", "material = \"m\"")
+        )
+    };
+    let dir = workspace(&[("s.toml", &textured("[textures.t]\nimage = \"big.png\"\n"))]);
+    std::fs::write(dir.path().join("big.png"), png_header_only(8193, 8193)).unwrap();
+    let run = lumiere_within_30_s(&["render", "s.toml", "-o", "out.png"], dir.path());
+    assert_clear_error(
+        &run,
+        "textures.t.image = big.png would need about 5.4 GiB for its 8193x8193 texels under the trilinear filter",
+        &dir.path().join("out.png"),
+    );
+    let three: String = ["t", "u", "v"]
+        .iter()
+        .map(|n| format!("[textures.{n}]\nprocedural = \"checkerboard\"\nresolution = 8192\n"))
+        .collect();
+    let dir = workspace(&[("s.toml", &textured(&three))]);
+    let run = lumiere_within_30_s(&["render", "s.toml", "-o", "out.png"], dir.path());
+    assert_clear_error(
+        &run,
+        "textures.v.resolution = 8192 would need about 5.2 GiB",
+        &dir.path().join("out.png"),
+    );
+    // Within a budget raised for them the header is read on and found to hold no
+    // pixels: the budget, not the decoder, refused the image above.
+    let dir = workspace(&[("s.toml", &textured("[textures.t]\nimage = \"big.png\"\n"))]);
+    std::fs::write(dir.path().join("big.png"), png_header_only(8193, 8193)).unwrap();
+    let run = lumiere(
+        &[
+            "render",
+            "s.toml",
+            "--set",
+            "render.max_memory_mb=8192",
+            "-o",
+            "out.png",
+        ],
+        dir.path(),
+    );
+    assert_clear_error(&run, "big.png", &dir.path().join("out.png"));
+    assert!(!run.stderr.contains("would need"), "{}", run.stderr);
+}

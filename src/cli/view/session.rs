@@ -31,16 +31,6 @@ const FILTERS: [Filter; 5] = [
     Filter::SummedArea,
 ];
 
-fn filter_name(filter: Filter) -> &'static str {
-    match filter {
-        Filter::Nearest => "nearest",
-        Filter::Bilinear => "bilinear",
-        Filter::MipNearest => "mip-nearest",
-        Filter::Trilinear => "trilinear",
-        Filter::SummedArea => "summed-area",
-    }
-}
-
 /// A picture to show, in 0RGB words, and how long its frame took.
 pub struct Frame {
     pub width: u32,
@@ -135,7 +125,7 @@ impl Session {
     pub fn filter_label(&self) -> String {
         match self.filter {
             None => "the scene's".into(),
-            Some(f) => filter_name(FILTERS[f]).into(),
+            Some(f) => Filter::name(FILTERS[f]).into(),
         }
     }
 
@@ -186,7 +176,7 @@ impl Session {
                     sets.push(format!(
                         "textures.{}.filter=\"{}\"",
                         t.name,
-                        filter_name(FILTERS[f])
+                        Filter::name(FILTERS[f])
                     ));
                 }
             }
