@@ -1,8 +1,8 @@
 //! Every `lumiere …` example in the shell blocks of the README and the pages beside it
 //! (BENCHMARKS.md, docs/*.md, docs/topics/*.md) runs as written, in order, and
 //! succeeds. Each page's examples run in a fresh directory of their own (beside a
-//! `golden/` like the checkout's, and a `my-scene.toml` standing for the user's own
-//! scene), so an example may read only what an earlier example of its page wrote.
+//! `golden/` like the checkout's, and the example scene the README renders,
+//! `examples/my-scene.toml`), so an example may read only what an earlier example of its page wrote.
 
 use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
@@ -49,27 +49,6 @@ fn documented_pages(root: &Path) -> Vec<PathBuf> {
 /// pages of their own): fewer found means some were lost on the way.
 const EXAMPLES: usize = 29;
 
-const MY_SCENE: &str = r#"
-[camera]
-eye = [0.0, 1.0, 3.0]
-look_at = [0.0, 0.0, 0.0]
-fov_y = 40.0
-width = 64
-height = 48
-
-[materials.grey]
-diffuse = [0.5, 0.5, 0.5]
-
-[[lights]]
-type = "point"
-position = [0.0, 2.0, 2.0]
-intensity = [5.0, 5.0, 5.0]
-
-[[objects]]
-shape = "sphere"
-material = "grey"
-"#;
-
 #[test]
 fn every_documented_example_runs_as_written() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -95,7 +74,12 @@ fn every_documented_example_runs_as_written() {
         let page = page.strip_prefix(root).unwrap().display();
         let dir = tempfile::tempdir().unwrap();
         std::os::unix::fs::symlink(root.join("golden"), dir.path().join("golden")).unwrap();
-        std::fs::write(dir.path().join("my-scene.toml"), MY_SCENE).unwrap();
+        std::fs::create_dir(dir.path().join("examples")).unwrap();
+        std::fs::copy(
+            root.join("examples/my-scene.toml"),
+            dir.path().join("examples/my-scene.toml"),
+        )
+        .unwrap();
         for example in examples {
             let out = Command::new("sh")
                 .arg("-c")
@@ -112,4 +96,16 @@ fn every_documented_example_runs_as_written() {
             );
         }
     }
+}
+
+/// The scene the README renders is the complete example of docs/scene-format.md.
+#[test]
+fn the_shipped_example_scene_is_the_documented_one() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let page = std::fs::read_to_string(root.join("docs/scene-format.md")).unwrap();
+    let at = page.find("## A complete example").unwrap();
+    let start = at + page[at..].find("```toml\n").unwrap() + "```toml\n".len();
+    let end = start + page[start..].find("```").unwrap();
+    let shipped = std::fs::read_to_string(root.join("examples/my-scene.toml")).unwrap();
+    assert_eq!(shipped, page[start..end]);
 }
