@@ -177,6 +177,19 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
                 None => format!("lights[{index}]"),
             })
         })? {
+            // A light that gives nothing makes a black image without saying why.
+            let (key, amount) = match &light {
+                Light::Point(l) => ("intensity", l.intensity),
+                Light::Distant(l) => ("irradiance", l.irradiance),
+                Light::Sphere(l) => ("radiance", l.radiance),
+                Light::Spot(l) => ("intensity", l.intensity),
+                Light::Polygon(l) => ("radiance", l.radiance),
+            };
+            if amount == glam::Vec3::ZERO {
+                builder.warnings.push(format!(
+                    "lights[{index}]: {key} is zero: the light adds nothing to the image"
+                ));
+            }
             lights.push(light);
         }
     }

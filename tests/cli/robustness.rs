@@ -308,3 +308,51 @@ fn textures_are_refused_over_the_memory_budget_before_they_are_made() {
     assert_clear_error(&run, "big.png", &dir.path().join("out.png"));
     assert!(!run.stderr.contains("would need"), "{}", run.stderr);
 }
+
+/// A light of every kind that gives nothing is named in a warning (its image is
+/// black, or lacks its share, without a word otherwise).
+#[test]
+fn a_light_that_gives_nothing_is_warned_about() {
+    let lights = [
+        (
+            "point",
+            "position = [0.0, 2.0, 2.0]\nintensity = [0.0, 0.0, 0.0]",
+            "intensity",
+        ),
+        (
+            "distant",
+            "direction = [0.0, -1.0, 0.0]\nirradiance = [0.0, 0.0, 0.0]",
+            "irradiance",
+        ),
+        (
+            "sphere",
+            "centre = [0.0, 2.0, 0.0]\nradius = 0.25\nradiance = [0.0, 0.0, 0.0]",
+            "radiance",
+        ),
+        (
+            "spot",
+            "position = [0.0, 2.0, 0.0]\naxis = [0.0, -1.0, 0.0]\ncone_angle = 30.0\nintensity = [0.0, 0.0, 0.0]",
+            "intensity",
+        ),
+    ];
+    for (kind, keys, key) in lights {
+        let s = scene(CAMERA, "").replace(
+            "type = \"point\"\nposition = [0.0, 2.0, 2.0]\nintensity = [5.0, 5.0, 5.0]",
+            &format!("type = \"{kind}\"\n{keys}"),
+        );
+        let dir = workspace(&[("s.toml", &s)]);
+        let run = lumiere(&["render", "s.toml", "-o", "out.png"], dir.path());
+        assert_eq!(run.code, 0, "{kind}: {}", run.stderr);
+        assert!(
+            run.stderr.contains(&format!(
+                "warning: lights[0]: {key} is zero: the light adds nothing to the image"
+            )),
+            "{kind}: {}",
+            run.stderr
+        );
+    }
+    // A light that gives something is not warned about.
+    let dir = workspace(&[("s.toml", &scene(CAMERA, ""))]);
+    let run = lumiere(&["render", "s.toml", "-o", "out.png"], dir.path());
+    assert!(!run.stderr.contains("is zero"), "{}", run.stderr);
+}
