@@ -3,6 +3,7 @@
 
 pub mod bvh;
 pub mod central_projection;
+pub(crate) mod contour_sweep;
 pub mod convex;
 pub mod disc;
 pub mod lambert_contour;

@@ -22,8 +22,9 @@
 //! different for different clip regions, since a fixed one would recreate the
 //! coincidence when a piece cut by one polygon is cut again by its neighbour across
 //! the shared edge.
-//! The debris this leaves at that scale is swept from the results: points closer
-//! than 1e-9 of the size are merged and contours thinner than that (mean width
+//! The debris this leaves at that scale is swept from the results (see
+//! `contour_sweep`): points closer than 1e-9 of the size are merged, contours that
+//! touch themselves split into loops, contours thinner than that (mean width
 //! 2·area/perimeter) dropped, and spikes (a vertex where a contour runs out and
 //! back along itself within that distance) cut off, so that repeated clipping, as
 //! in hidden-surface removal, never meets features as small as its own
@@ -36,6 +37,7 @@
 //! result, another one is drawn, growing from 1e-10 to 1e-6 of the size over eight
 //! tries (debris of earlier clips can be larger than the first perturbation).
 
+use super::contour_sweep::sweep;
 use super::plane::bounds;
 use glam::DVec2;
 
@@ -211,74 +213,6 @@ fn nudge_for(region: &Region, salt: u64) -> DVec2 {
     let angle = (h >> 11) as f64 / (1u64 << 53) as f64 * std::f64::consts::TAU;
     let length = 1.0 + (h & 0x3FF) as f64 / 1024.0;
     DVec2::new(angle.cos(), angle.sin()) * length
-}
-
-/// Merges points closer than `tolerance` and drops contours thinner than it.
-fn sweep(region: Region, tolerance: f64) -> Region {
-    region
-        .into_iter()
-        .filter_map(|contour| {
-            let mut kept: Vec<DVec2> = Vec::with_capacity(contour.len());
-            for p in contour {
-                if kept.last().is_none_or(|q| q.distance(p) >= tolerance) {
-                    kept.push(p);
-                }
-            }
-            while kept.len() > 1 && kept[0].distance(kept[kept.len() - 1]) < tolerance {
-                kept.pop();
-            }
-            remove_spikes(&mut kept, tolerance);
-            let perimeter: f64 = (0..kept.len())
-                .map(|i| kept[i].distance(kept[(i + 1) % kept.len()]))
-                .sum();
-            let thick = kept.len() >= 3 && 2.0 * contour_area(&kept).abs() >= tolerance * perimeter;
-            thick.then_some(kept)
-        })
-        .collect()
-}
-
-/// Removes the contour's spikes: vertices where it runs out and comes back along
-/// itself, so that the next vertex lies within `tolerance` of the edge just
-/// walked. A spike encloses no area, but its two edges, moved together by the
-/// perturbation, would be crossed twice at once by any edge that meets them.
-fn remove_spikes(contour: &mut Vec<DVec2>, tolerance: f64) {
-    let mut i = 0;
-    let mut unchanged = 0;
-    while contour.len() >= 3 && unchanged < contour.len() {
-        let n = contour.len();
-        let (prev, vertex, next) = (
-            contour[(i + n - 1) % n],
-            contour[i % n],
-            contour[(i + 1) % n],
-        );
-        let folds_back = distance_to_segment(next, prev, vertex) < tolerance
-            || distance_to_segment(prev, vertex, next) < tolerance;
-        if folds_back && vertex.distance(prev) >= tolerance && vertex.distance(next) >= tolerance {
-            contour.remove(i % n);
-            // Merge the two ends the spike leaves side by side.
-            let n = contour.len();
-            let at = (i + n - 1) % n;
-            if n >= 2 && contour[at].distance(contour[(at + 1) % n]) < tolerance {
-                contour.remove((at + 1) % n);
-            }
-            unchanged = 0;
-            i = i.saturating_sub(1);
-        } else {
-            unchanged += 1;
-            i += 1;
-        }
-    }
-}
-
-/// Distance from `p` to the segment from `a` to `b`.
-fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let ab = b - a;
-    let t = if ab.length_squared() > 0.0 {
-        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + t * ab)
 }
 
 /// One vertex of a contour list: an original vertex, or an intersection linked to
@@ -540,37 +474,6 @@ mod tests {
             DVec2::new(x + side, y + side),
             DVec2::new(x, y + side),
         ]
-    }
-
-    /// A spike (out to a point and back along the same line, within the tolerance)
-    /// is cut off; a sharp corner, however sharp, that encloses more than the
-    /// tolerance is kept.
-    #[test]
-    fn spikes_are_removed_and_sharp_corners_kept() {
-        let p = DVec2::new;
-        let mut spiked = vec![
-            p(0.0, 0.0),
-            p(1.0, 0.0),
-            p(1.0, 0.5),
-            p(3.0, 0.5),
-            p(1.0, 0.5 + 1e-8),
-            p(1.0, 1.0),
-            p(0.0, 1.0),
-        ];
-        remove_spikes(&mut spiked, 1e-6);
-        assert_eq!(spiked.len(), 5, "{spiked:?}");
-        assert!((contour_area(&spiked) - 1.0).abs() < 1e-7);
-        let mut sharp = vec![
-            p(0.0, 0.0),
-            p(1.0, 0.0),
-            p(1.0, 0.5),
-            p(3.0, 0.5),
-            p(1.0, 0.5 + 1e-4),
-            p(1.0, 1.0),
-            p(0.0, 1.0),
-        ];
-        remove_spikes(&mut sharp, 1e-6);
-        assert_eq!(sharp.len(), 7);
     }
 
     /// Degenerate operands (repeated and collinear vertices, slivers, coordinates

@@ -274,18 +274,30 @@ impl Removal {
     /// The part of `piece` nearer the light than `clipper`'s plane, if it is more
     /// than a sliver. Both are planar, so a piece none of whose vertices is nearer
     /// lies wholly behind.
+    ///
+    /// The cut is a Weiler–Atherton clip against the half-plane where the piece is
+    /// nearer (the piece's box, grown, cut by the line where the depths cross):
+    /// cutting a concave contour with Sutherland–Hodgman instead would join its
+    /// parts by edges running both ways along the line, an outline that touches
+    /// itself, on which the next window's clipping finds every crossing twice.
     fn ahead(&self, piece: &Piece, clipper: &Piece) -> Option<Region> {
         let (p, f) = (piece.plane, clipper.plane);
         let nearer = |q: &DVec2| p.zeta(q.x, q.y) - f.zeta(q.x, q.y) * (1.0 + 1e-9);
         if !piece.region.iter().flatten().any(|q| nearer(q) > 0.0) {
             return None;
         }
-        let ahead: Region = piece
-            .region
-            .iter()
-            .map(|c| sutherland_hodgman::clip(c, nearer))
-            .filter(|c| c.len() >= 3)
-            .collect();
+        if piece.region.iter().flatten().all(|q| nearer(q) > 0.0) {
+            return Some(piece.region.clone());
+        }
+        let (lo, hi) = piece.bounds;
+        let margin = (hi - lo).max_element() + 1.0;
+        let (lo, hi) = (lo - DVec2::splat(margin), hi + DVec2::splat(margin));
+        let frame = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
+        let half_plane = sutherland_hodgman::clip(&frame, nearer);
+        if half_plane.len() < 3 {
+            return None;
+        }
+        let (ahead, _) = weiler_atherton::clip(&piece.region, &vec![half_plane]);
         (area(&ahead) > self.sliver).then_some(ahead)
     }
 }
