@@ -210,9 +210,11 @@ pub enum Error {
     /// Gathering would store more form factors (`needed` bytes, for `elements` ×
     /// `patches` of them) than the `budget` allows.
     #[error(
-        "gathering would store {} form factors ({:.1} GiB) for {elements} elements and {patches} patches, more than the {:.1} GiB that radiosity.max_memory_mb allows; use the shooting solver (O(n) memory) or coarser patches, or raise radiosity.max_memory_mb",
-        (*elements as u64).saturating_mul(*patches as u64),
+        "gathering would store {} form factors ({:.1} GiB) for {} elements and {} patches, more than the {:.1} GiB that radiosity.max_memory_mb allows; use the shooting solver (O(n) memory) or coarser patches and elements (radiosity.patch_size, radiosity.element_size), or raise radiosity.max_memory_mb",
+        count((*elements as u64).saturating_mul(*patches as u64)),
         gib(*needed),
+        count(*elements as u64),
+        count(*patches as u64),
         gib(*budget)
     )]
     Memory {
@@ -377,6 +379,15 @@ fn bytes(n: u64) -> String {
         format!("{:.1} GiB", gib(n))
     } else {
         format!("{:.1} MiB", n as f64 / (1u64 << 20) as f64)
+    }
+}
+
+/// A count for a message: one that saturated is no count any machine holds, and is
+/// said so rather than printed as 2^64 - 1.
+pub(crate) fn count(n: u64) -> String {
+    match n {
+        u64::MAX => "more than 1.8e19".to_string(),
+        n => n.to_string(),
     }
 }
 

@@ -29,7 +29,7 @@ fn main() -> ExitCode {
         Err(e) if lumiere_cli::is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
             // One line: the error and its causes, joined.
-            eprintln!("error: {}", format!("{e:#}").replace('\n', " "));
+            eprintln!("error: {}", lumiere_cli::one_line(&format!("{e:#}")));
             ExitCode::from(failure_status(&e))
         }
     }

@@ -170,7 +170,9 @@ mod scenes {
             };
             let line = crate::common::error_line(&e);
             assert!(
-                line.contains("objects[0]: the transform is degenerate"),
+                line.contains(
+                    "objects[0]: transform[0].scale: a scale must be finite and not zero"
+                ),
                 "{line}"
             );
             return None;

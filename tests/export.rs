@@ -288,3 +288,59 @@ fn what_cannot_be_carried_over_is_named_and_a_wrong_extension_refused() {
     assert_eq!(stderr.lines().count(), 1);
     assert!(stderr.contains("written as .pov"), "{stderr}");
 }
+
+/// A Mitsuba export replaces the XML and its meshes together: exporting a scene
+/// of fewer materials over an earlier export leaves no stale mesh beside the new
+/// ones, and every mesh the XML names is there.
+#[test]
+fn a_mitsuba_export_replaces_its_meshes_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let meshes = |d: &Path| -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(d.join("scene-meshes"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        names
+    };
+    lumiere(
+        &[
+            "export",
+            "cornell-box-point",
+            "--format",
+            "mitsuba",
+            "-o",
+            "scene.xml",
+        ],
+        d,
+    );
+    let many = meshes(d);
+    let one = "[camera]\neye = [0.0, 1.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 16\nheight = 12\n\
+               [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+               [[lights]]\ntype = \"point\"\nposition = [0.0, 2.0, 2.0]\nintensity = [5.0, 5.0, 5.0]\n\
+               [[objects]]\nshape = \"quad\"\nmaterial = \"grey\"\n";
+    std::fs::write(d.join("one.toml"), one).unwrap();
+    lumiere(
+        &[
+            "export",
+            "one.toml",
+            "--format",
+            "mitsuba",
+            "-o",
+            "scene.xml",
+        ],
+        d,
+    );
+    let after = meshes(d);
+    assert!(many.len() > 1, "{many:?}");
+    assert_eq!(after, ["000.obj"]);
+    let xml = std::fs::read_to_string(d.join("scene.xml")).unwrap();
+    assert_eq!(xml.matches("scene-meshes/").count(), 1, "{xml}");
+    let leftovers: Vec<String> = std::fs::read_dir(d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}

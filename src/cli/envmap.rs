@@ -33,7 +33,7 @@ pub struct Args {
     #[arg(long, value_name = "NAME")]
     hide: Vec<String>,
     /// An environment map image to convert instead of capturing.
-    #[arg(long, value_name = "MAP", conflicts_with_all = ["scene", "at", "hide"])]
+    #[arg(long, value_name = "MAP", conflicts_with_all = ["scene", "at", "hide", "sets"])]
     from: Option<PathBuf>,
     /// How the --from image is laid out.
     #[arg(long, value_enum, requires = "from")]
@@ -82,6 +82,8 @@ pub fn run(args: Args) -> Result<()> {
                 bail!("--from needs --layout: how {} is laid out", from.display());
             };
             let image = read_image(from)?;
+            lumiere::internals::image_io::refuse_non_radiance(&image)
+                .with_context(|| from.display().to_string())?;
             let texels = Texels {
                 width: image.width,
                 height: image.height,

@@ -13,8 +13,11 @@ pub struct Args {
     #[arg(long, value_parser = topic_name)]
     topic: Option<Topic>,
     /// Print every entry's [algorithm] table as JSON instead.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "ids")]
     json: bool,
+    /// Only the ids, one a line, for scripts (`for id in $(lumiere list --ids)`).
+    #[arg(long, conflicts_with = "brief")]
+    ids: bool,
 }
 
 /// A topic by its name, for `--topic`.
@@ -33,6 +36,12 @@ pub fn run(args: Args) -> Result<()> {
         .into_iter()
         .filter(|e| args.topic.is_none_or(|t| e.algorithm.topic == t))
         .collect();
+    if args.ids {
+        for e in &entries {
+            outln!("{}", e.algorithm.id)?;
+        }
+        return Ok(());
+    }
     if args.json {
         let tables: Vec<_> = entries.iter().map(|e| &e.algorithm).collect();
         outln!("{}", serde_json::to_string_pretty(&tables)?)?;

@@ -6,7 +6,7 @@
 macro_rules! outln {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
-        writeln!(std::io::stdout(), $($arg)*)
+        anyhow::Context::context(writeln!(std::io::stdout(), $($arg)*), "writing standard output")
     }};
 }
 
@@ -14,7 +14,7 @@ macro_rules! outln {
 macro_rules! out {
     ($($arg:tt)*) => {{
         use std::io::Write as _;
-        write!(std::io::stdout(), $($arg)*)
+        anyhow::Context::context(write!(std::io::stdout(), $($arg)*), "writing standard output")
     }};
 }
 
@@ -36,7 +36,7 @@ mod show;
 mod timing;
 mod view;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{CommandFactory, Parser, Subcommand};
 
 /// A count that must be at least one (`--runs`, `--frame-every`): zero would be
@@ -57,6 +57,10 @@ fn at_least_one(text: &str) -> std::result::Result<usize, String> {
 #[derive(Parser, Debug)]
 #[command(name = "lumiere", version, about, long_about)]
 pub struct Cli {
+    /// Worker threads for the parallel passes (default: one per core). The output
+    /// is the same for any count.
+    #[arg(long, global = true, value_name = "N", value_parser = at_least_one)]
+    threads: Option<usize>,
     #[command(subcommand)]
     command: Command,
 }
@@ -98,6 +102,25 @@ pub fn is_broken_pipe(error: &anyhow::Error) -> bool {
     })
 }
 
+/// `text` on one line, any word of it longer than a line (a megabyte name, a
+/// mistyped key of thousands of characters) cut to its ends and its length.
+pub fn one_line(text: &str) -> String {
+    const LONGEST: usize = 120;
+    text.split('\n')
+        .flat_map(|line| line.split(' '))
+        .map(|word| {
+            let chars = word.chars().count();
+            if chars <= LONGEST {
+                return word.to_string();
+            }
+            let head: String = word.chars().take(60).collect();
+            let tail: String = word.chars().skip(chars - 20).collect();
+            format!("{head}…[{} characters]…{tail}", chars - 80)
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// A command-line usage error as one line: clap's message with the lines that
 /// continue it (the missing arguments, the possible values) and a tip naming a
 /// similar argument, without the usage summary. Tips to put `--` before a value are
@@ -124,7 +147,7 @@ pub fn usage_error_line(error: &clap::Error) -> String {
         .filter(|name| Cli::command().find_subcommand(name).is_some())
         .map(|name| format!("{name} "))
         .unwrap_or_default();
-    format!("{line}; see `lumiere {subcommand}--help`")
+    one_line(&format!("{line}; see `lumiere {subcommand}--help`"))
 }
 
 /// `--width` and `--height`, shared by the commands that make an image.
@@ -153,6 +176,12 @@ impl ImageSize {
 }
 
 pub fn run(cli: Cli) -> Result<()> {
+    if let Some(n) = cli.threads {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()
+            .context("--threads")?;
+    }
     match cli.command {
         Command::List(a) => list::run(a),
         Command::Show(a) => show::run(a),

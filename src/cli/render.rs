@@ -129,7 +129,7 @@ pub fn run(args: Args) -> Result<()> {
     renderer.check()?;
     renderer.set_hemicube_element(args.hemicube_element);
     for warning in renderer.warnings() {
-        eprintln!("warning: {warning}");
+        eprintln!("warning: {}", super::one_line(&warning));
     }
     let scene = renderer.scene();
     if !scene.polygons.is_empty() && {
@@ -142,6 +142,7 @@ pub fn run(args: Args) -> Result<()> {
         );
     }
     if let Some(settings) = &radiosity {
+        refuse_missing_element(&args, renderer.scene(), settings)?;
         let frames = args.frames.map(|dir| super::radiosity::Frames {
             dir,
             every: args.frame_every,
@@ -265,4 +266,34 @@ fn radiosity_sets(args: &Args) -> Vec<String> {
         sets.push("radiosity.ambient=true".to_string());
     }
     sets
+}
+
+/// `--hemicube-element E` past every element the mesh can have (those it is cut
+/// into, each cut in four by every round of adaptive subdivision), refused before
+/// the solve rather than after it.
+fn refuse_missing_element(
+    args: &Args,
+    scene: &lumiere::Scene,
+    settings: &lumiere::settings::RadiositySettings,
+) -> Result<()> {
+    if args.hemicube_element == 0 {
+        return Ok(());
+    }
+    let mesh =
+        lumiere::internals::radiosity::Mesh::count(scene, settings.patches, settings.elements);
+    let levels = settings.subdivision.map_or(0, |s| s.levels);
+    let most = mesh.elements.saturating_mul(4u64.saturating_pow(levels));
+    if args.hemicube_element as u64 >= most {
+        bail!(
+            "--hemicube-element {}: the mesh has {} elements{}, numbered from 0",
+            args.hemicube_element,
+            mesh.elements,
+            if levels > 0 {
+                format!(" (at most {most} after {levels} rounds of subdivision)")
+            } else {
+                String::new()
+            }
+        );
+    }
+    Ok(())
 }

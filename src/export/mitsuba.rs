@@ -8,7 +8,7 @@
 use super::{Mesh, MitsubaIntegrator as Integrator, sibling};
 use crate::error::{Error, FileOp, Result};
 use crate::geometry::polygon::triangulate;
-use crate::image_io::write_atomically;
+use crate::image_io::{StagedDirectory, refuse_read_only};
 use crate::scene::{Light, Scene};
 use glam::{DVec3, Vec3};
 use std::fmt::Write as _;
@@ -33,8 +33,11 @@ pub(super) fn write(
     spp: u32,
     integrator: Integrator,
 ) -> Result<()> {
+    // Everything is written before anything is replaced: the meshes into a staging
+    // folder that takes the old folder's place whole (no stale mesh of an earlier
+    // export stays), the XML inside it until then, moved out last.
     let folder = sibling(output, "-meshes");
-    std::fs::create_dir_all(&folder).map_err(|e| Error::io(FileOp::Write, &folder, e))?;
+    let staged = StagedDirectory::for_replacing(&folder)?;
     let folder_name = folder
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -89,8 +92,8 @@ pub(super) fn write(
     for (k, mesh) in meshes.iter().enumerate() {
         let material = &scene.materials[mesh.material];
         let file = format!("{k:03}.obj");
-        let path = folder.join(&file);
-        write_atomically(&path, obj(mesh).as_bytes())?;
+        std::fs::write(staged.path(&file), obj(mesh))
+            .map_err(|e| Error::io(FileOp::Write, &folder.join(&file), e))?;
         let _ = writeln!(
             xml,
             "  <shape type=\"obj\" id=\"{k:03}\">\n    <string name=\"filename\" value=\"{folder_name}/{file}\"/>\n    <boolean name=\"face_normals\" value=\"{}\"/>",
@@ -175,8 +178,15 @@ pub(super) fn write(
         }
     }
     xml.push_str("</scene>\n");
-    write_atomically(output, xml.as_bytes())?;
-    Ok(())
+    const XML: &str = ".scene.xml";
+    std::fs::write(staged.path(XML), xml).map_err(|e| Error::io(FileOp::Write, output, e))?;
+    refuse_read_only(output)?;
+    staged.replace()?;
+    let xml = folder.join(XML);
+    std::fs::rename(&xml, output).map_err(|e| {
+        let _ = std::fs::remove_file(&xml);
+        Error::io(FileOp::Write, output, e)
+    })
 }
 
 /// A mesh as OBJ: positions, normals, and each polygon cut into triangles by ear

@@ -10,7 +10,7 @@
 //! from the outline is unchanged, so the region is the same), spikes are cut off
 //! and loops thinner than the tolerance dropped.
 
-use super::weiler_atherton::{Region, contour_area};
+use super::region::{Region, contour_area};
 use glam::DVec2;
 
 /// The region swept of debris smaller than `tolerance`.
@@ -146,7 +146,7 @@ pub(crate) fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::weiler_atherton::area;
+    use crate::geometry::region::area;
 
     /// A spike (out to a point and back along the same line, within the tolerance)
     /// is cut off; a sharp corner, however sharp, that encloses more than the

@@ -9,6 +9,7 @@ pub mod disc;
 pub mod lambert_contour;
 pub mod plane;
 pub mod polygon;
+pub(crate) mod region;
 pub mod sampling;
 pub mod sutherland_hodgman;
 pub mod weiler_atherton;

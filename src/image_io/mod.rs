@@ -141,7 +141,7 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
 
 /// Refuses to replace `path` if it is a read-only file: renaming over it, or
 /// removing it, would not ask.
-fn refuse_read_only(path: &Path) -> Result<()> {
+pub(crate) fn refuse_read_only(path: &Path) -> Result<()> {
     if std::fs::metadata(path).is_ok_and(|m| m.permissions().readonly()) {
         return Err(Error::io(
             FileOp::Write,
@@ -255,12 +255,7 @@ pub fn read_file(path: &Path, op: FileOp) -> Result<Vec<u8>> {
 /// Reads a PNG (decoded from sRGB to linear), a PFM or an OpenEXR file.
 pub fn load(path: &Path) -> Result<Image> {
     let bytes = read_file(path, FileOp::Read)?;
-    match Format::of(path)? {
-        Format::Png => png::decode(&bytes),
-        Format::Pfm => pfm::decode(&bytes),
-        Format::Exr => exr::decode(&bytes),
-    }
-    .map_err(|e| e.at_path(path))
+    decode(&bytes, Format::of(path)?).map_err(|e| e.at_path(path))
 }
 
 /// Decodes an image file's bytes in `format`.
@@ -270,6 +265,27 @@ pub fn decode(bytes: &[u8], format: Format) -> Result<Image> {
         Format::Pfm => pfm::decode(bytes),
         Format::Exr => exr::decode(bytes),
     }
+}
+
+/// Refuses an image that is to be read as radiance (an environment map) if a
+/// texel is NaN, infinite or negative: it would turn every sum it enters, a
+/// filtered texel, a reflection, into the same. Names the count and the first.
+pub fn refuse_non_radiance(image: &Image) -> Result<()> {
+    let bad = |p: &Vec3| !p.is_finite() || p.min_element() < 0.0;
+    let Some(first) = image.pixels.iter().position(bad) else {
+        return Ok(());
+    };
+    let count = image.pixels.iter().filter(|p| bad(p)).count();
+    let width = image.width as usize;
+    let p = image.pixels[first];
+    Err(Error::image(format!(
+        "{count} of its texels are not radiance (finite, at least 0): the first, at x = {}, y = {}, is ({}, {}, {})",
+        first % width,
+        first / width,
+        p.x,
+        p.y,
+        p.z
+    )))
 }
 
 /// Decodes PNG bytes (sRGB to linear).

@@ -57,6 +57,13 @@ pub fn decode(bytes: &[u8]) -> Result<Image> {
     let width: u32 = fields[1].parse().map_err(|e| bad("width", &e))?;
     let height: u32 = fields[2].parse().map_err(|e| bad("height", &e))?;
     let scale: f32 = fields[3].parse().map_err(|e| bad("scale", &e))?;
+    // Its sign gives the byte order, its size nothing more: 0 or NaN has no sign.
+    if scale == 0.0 || !scale.is_finite() {
+        return Err(Error::image(format!(
+            "bad PFM scale: {} (a non-zero number: negative for little-endian data, positive for big-endian)",
+            fields[3]
+        )));
+    }
     if width == 0 || height == 0 {
         return Err(Error::image("the image is empty"));
     }

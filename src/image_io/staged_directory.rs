@@ -12,13 +12,38 @@ pub struct StagedDirectory {
     target: PathBuf,
     staging: tempfile::TempDir,
     _unfinished: Unfinished,
+    /// The directory `create` made, removed again if the run fails while it is
+    /// still empty (a full disk must not leave an empty directory behind).
+    made: MadeDirectory,
+}
+
+/// A directory made for a run, removed when dropped unless `kept`, and only if
+/// empty: nothing of anyone's is lost.
+struct MadeDirectory(Option<PathBuf>);
+
+impl MadeDirectory {
+    fn kept(&mut self) {
+        self.0 = None;
+    }
+}
+
+impl Drop for MadeDirectory {
+    fn drop(&mut self) {
+        if let Some(dir) = &self.0 {
+            let _ = std::fs::remove_dir(dir);
+        }
+    }
 }
 
 impl StagedDirectory {
     /// Makes `target` (if missing) and a staging directory beside it.
     pub fn create(target: &Path) -> Result<StagedDirectory> {
+        let made = MadeDirectory((!target.exists()).then(|| target.to_path_buf()));
         std::fs::create_dir_all(target).map_err(|e| Error::io(FileOp::Write, target, e))?;
-        StagedDirectory::for_replacing(target)
+        Ok(StagedDirectory {
+            made,
+            ..StagedDirectory::for_replacing(target)?
+        })
     }
 
     /// A staging directory for a `target` directory that is replaced whole when
@@ -38,6 +63,7 @@ impl StagedDirectory {
             target: target.to_path_buf(),
             _unfinished: Unfinished::track(staging.path()),
             staging,
+            made: MadeDirectory(None),
         })
     }
 
@@ -81,7 +107,7 @@ impl StagedDirectory {
 
     /// Moves the run's files into the directory, first removing what an earlier
     /// run wrote there (the files `earlier` recognises); other files are left.
-    pub fn publish(self, earlier: impl Fn(&str) -> bool) -> Result<()> {
+    pub fn publish(mut self, earlier: impl Fn(&str) -> bool) -> Result<()> {
         let names = |dir: &Path| -> Result<Vec<String>> {
             let entries = std::fs::read_dir(dir).map_err(|e| Error::io(FileOp::Read, dir, e))?;
             entries
@@ -109,6 +135,41 @@ impl StagedDirectory {
             std::fs::rename(self.staging.path().join(name), &to)
                 .map_err(|e| Error::io(FileOp::Write, &to, e))?;
         }
+        self.made.kept();
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A run that fails (the staged directory dropped unpublished) removes the
+    /// directory `create` made, if empty; one that was there, or holds a file, stays.
+    #[test]
+    fn a_failed_run_leaves_no_empty_directory_it_made() {
+        let dir = tempfile::tempdir().unwrap();
+        let made = dir.path().join("frames");
+        drop(StagedDirectory::create(&made).unwrap());
+        assert!(!made.exists());
+        std::fs::create_dir(&made).unwrap();
+        drop(StagedDirectory::create(&made).unwrap());
+        assert!(made.exists(), "a directory that was there is kept");
+        let other = dir.path().join("other");
+        let staged = StagedDirectory::create(&other).unwrap();
+        std::fs::write(other.join("mine.txt"), "keep").unwrap();
+        drop(staged);
+        assert!(other.join("mine.txt").exists());
+        let published = dir.path().join("done");
+        let staged = StagedDirectory::create(&published).unwrap();
+        std::fs::write(staged.path("a.png"), "png").unwrap();
+        staged.publish(|_| false).unwrap();
+        assert!(published.join("a.png").exists());
+        let leftovers: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with(".lumiere"))
+            .collect();
+        assert!(leftovers.is_empty(), "{leftovers:?}");
     }
 }

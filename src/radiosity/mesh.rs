@@ -177,16 +177,21 @@ impl Mesh {
         let counts = Mesh::count(scene, patches, elements);
         let needed = counts.bytes().saturating_add(reserved);
         if needed > budget || counts.vertices > u32::MAX as u64 {
-            let (key, value) = match elements {
-                Division::Whole => patches.describe("patch_size"),
+            // The finer of the two divisions is the one that made the count.
+            let (key, value) = match (patches, elements) {
+                (_, Division::Whole) => patches.describe("patch_size"),
+                (Division::Size(p), Division::Size(e)) if p < e => patches.describe("patch_size"),
                 _ => elements.describe("element_size"),
             };
+            let shown = crate::error::count;
             return Err(Error::OverBudget(Box::new(crate::error::OverBudget {
                 key,
                 value,
                 what: format!(
                     "{} patches, {} elements and {} vertices",
-                    counts.patches, counts.elements, counts.vertices
+                    shown(counts.patches),
+                    shown(counts.elements),
+                    shown(counts.vertices)
                 ),
                 needed,
                 budget,

@@ -19,7 +19,7 @@ use crate::global::two_pass::{self, SecondPass};
 use crate::image_io::Image;
 use crate::radiosity::{self, Solution};
 use crate::scene::{Camera, EnvironmentSource, Light, Scene};
-use crate::settings::{Filter, MediumMethod, ShadowSettings};
+use crate::settings::{Filter, MediumMethod, ShadowMethod, ShadowSettings};
 use crate::shadow::{self, LightShadows, SceneOccluders, SharedWork};
 use crate::texture::Texels;
 use crate::texture::environment::EnvironmentMap;
@@ -213,6 +213,15 @@ impl Renderer {
     pub fn check(&self) -> Result<()> {
         super::medium::check_march(&self.scene)?;
         let method = shadow::method(self.scene.shadows.method);
+        if self.ray_traced().is_some() && self.scene.shadows.method != ShadowMethod::None {
+            return Err(Error::invalid(
+                "shadows.method",
+                format!(
+                    "shadows.method = \"{}\": ray tracing (global.method = \"ray-tracing\") casts its own shadow rays and would ignore it; leave it out, or remove [global]",
+                    method.name
+                ),
+            ));
+        }
         if self.ray_traced().is_none() {
             let direct = lit_directly(
                 &self.scene,
@@ -230,14 +239,15 @@ impl Renderer {
     }
 
     /// What a user should know of this scene as this renderer draws it: the scene's
-    /// own warnings, then its shadow method's (one line each).
+    /// own warnings, then its shadow method's (one line each, a line said many times
+    /// said once with its count).
     pub fn warnings(&self) -> Vec<String> {
         let method = shadow::method(self.scene.shadows.method);
         let mut warnings = self.scene.warnings.clone();
         if self.ray_traced().is_none() {
             warnings.extend((method.warnings)(&self.scene));
         }
-        warnings
+        said_once(warnings)
     }
 
     /// The frame's linear radiance image.
@@ -428,4 +438,22 @@ pub fn capture_cube(
         });
     }
     Ok(EnvironmentMap::cube(faces, filter))
+}
+
+/// Each distinct line once, where it first appeared, with how many times it was
+/// said when more than once.
+fn said_once(lines: Vec<String>) -> Vec<String> {
+    let mut counts: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    for line in &lines {
+        *counts.entry(line.as_str()).or_default() += 1;
+    }
+    let mut seen = std::collections::HashSet::new();
+    lines
+        .iter()
+        .filter(|line| seen.insert(line.as_str()))
+        .map(|line| match counts[line.as_str()] {
+            1 => line.clone(),
+            n => format!("{line} ({n} times)"),
+        })
+        .collect()
 }

@@ -286,7 +286,7 @@ impl Builder {
                 let vertices = o.vertices.as_deref().unwrap_or_default();
                 let corners = vertices
                     .iter()
-                    .map(|&v| validate::vec3("vertices", v))
+                    .map(|&v| validate::position("vertices", v))
                     .collect::<Result<Vec<_>>>()?;
                 check_polygon(&corners)?;
                 shapes::polygon(&corners)
@@ -315,6 +315,7 @@ impl Builder {
             _ => ("shape", format!("{:?}", o.shape).to_lowercase()),
         };
         self.check_geometry(&faces, key, &value)?;
+        check_extent(&m, &faces)?;
         let material_name = o.material.as_deref().ok_or_else(|| {
             Error::invalid(
                 "material",
@@ -385,6 +386,7 @@ impl Builder {
         let path = o.file.as_deref().unwrap_or_default();
         let model = obj::load(res, Path::new(path), o.smooth.unwrap_or(true))?;
         self.check_geometry(&model.faces, "file", path)?;
+        check_extent(m, &model.faces)?;
         self.warnings.extend(model.warnings);
         let forced = o
             .material
@@ -619,6 +621,26 @@ fn check_polygon(corners: &[DVec3]) -> Result<()> {
     Ok(())
 }
 
+/// The object placed by `m` stays within the coordinates a scene holds: a scale
+/// of 1e308 would make every polygon's area infinite, reported as empty.
+fn check_extent(m: &glam::DMat4, faces: &Faces) -> Result<()> {
+    let reach = faces
+        .iter()
+        .flatten()
+        .map(|v| m.transform_point3(v.position).abs().max_element())
+        .fold(
+            0.0f64,
+            |a, b| if b.is_nan() { f64::INFINITY } else { a.max(b) },
+        );
+    ensure_valid!(
+        reach <= validate::MAX_COORDINATE,
+        "transform",
+        "transform: the object reaches {reach:e}, beyond ±{:e}, the largest coordinate a scene holds (a scale or translation too large)",
+        validate::MAX_COORDINATE
+    );
+    Ok(())
+}
+
 /// Keys that do not apply to the object's shape are errors, like unknown keys.
 fn check_keys(o: &ObjectFile) -> Result<()> {
     use ShapeKind::*;
@@ -663,6 +685,11 @@ fn plain_serde_message(message: &str) -> String {
         ("expected usize", "expected a whole number of at least 0"),
         ("expected f64", "expected a number"),
         ("expected a boolean", "expected true or false"),
+        // What an enumeration's deserialiser says of a number or a boolean.
+        (
+            "invalid type: unit variant, expected string only",
+            "expected one of its names, in quotes",
+        ),
     ]
     .iter()
     .fold(first.to_string(), |m, (from, to)| m.replace(from, to))

@@ -174,7 +174,9 @@ fn read_image(path: &str, what: &str, resources: &dyn Resources) -> Result<Texel
         )
     })?;
     let bytes = resources.read(path_ref).map_err(|e| e.within(what))?;
-    let image = image_io::decode(&bytes, format).map_err(|e| e.at_path(path_ref).within(what))?;
+    let image = image_io::decode(&bytes, format)
+        .and_then(|image| image_io::refuse_non_radiance(&image).map(|()| image))
+        .map_err(|e| e.at_path(path_ref).within(what))?;
     ensure_valid!(
         image.width > 0
             && image.height > 0

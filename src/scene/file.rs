@@ -183,8 +183,8 @@ pub struct GlobalFile {
     pub contrast: f64,
     #[serde(default)]
     pub weights: crate::settings::SpecularWeights,
-    #[serde(default = "window_depth")]
-    pub window_depth: u32,
+    /// Absent: 2 (the two-pass methods' mirror-of-mirror levels).
+    pub window_depth: Option<u32>,
     /// Absent: all four.
     pub mechanisms: Option<Vec<MechanismFile>>,
     #[serde(default)]
@@ -216,9 +216,6 @@ fn subdivisions() -> u32 {
 }
 fn contrast() -> f64 {
     0.05
-}
-fn window_depth() -> u32 {
-    2
 }
 /// `[shadows]`: which method, and the shadow map's settings.
 #[derive(Debug, Deserialize)]

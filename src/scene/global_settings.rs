@@ -4,7 +4,7 @@ use super::file::{GlobalFile, MechanismFile};
 use super::validate::colour;
 use crate::error::Result;
 use crate::error::ensure_valid;
-use crate::settings::{GlobalSettings as Settings, Mechanisms};
+use crate::settings::{GlobalMethod, GlobalSettings as Settings, Mechanisms};
 
 /// The longest ray tree `depth` allows: rays grow as 2^depth under glass.
 pub const MAX_DEPTH: u32 = 16;
@@ -12,6 +12,8 @@ pub const MAX_DEPTH: u32 = 16;
 pub const MAX_SUBDIVISIONS: u32 = 6;
 /// Mirror-of-mirror paths: each level renders a virtual environment per window.
 pub const MAX_WINDOW_DEPTH: u32 = 4;
+/// Mirror-of-mirror levels when the scene gives none.
+const DEFAULT_WINDOW_DEPTH: u32 = 2;
 
 pub fn from_file(g: &GlobalFile) -> Result<Settings> {
     ensure_valid!(
@@ -38,11 +40,24 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         "global.contrast must be a positive number, got {}",
         g.contrast
     );
+    let ray_traced = g.method == GlobalMethod::RayTracing;
     ensure_valid!(
-        g.window_depth <= MAX_WINDOW_DEPTH,
+        !(ray_traced && g.window_depth.is_some()),
+        "global.window_depth",
+        "global.window_depth = {} is the two-pass methods' (mirrors seen through mirrors in pass 1); ray tracing follows mirrors by its reflected rays (global.depth) and would ignore it",
+        g.window_depth.unwrap_or_default()
+    );
+    ensure_valid!(
+        !(ray_traced && g.mechanisms.is_some()),
+        "global.mechanisms",
+        "global.mechanisms selects the two-pass methods' transfers; ray tracing would ignore it (leave it out, or choose method = \"two-pass\")"
+    );
+    let window_depth = g.window_depth.unwrap_or(DEFAULT_WINDOW_DEPTH);
+    ensure_valid!(
+        window_depth <= MAX_WINDOW_DEPTH,
         "global.window_depth",
         "global.window_depth must be at most {MAX_WINDOW_DEPTH} (each level renders a virtual environment per mirror), got {}",
-        g.window_depth
+        window_depth
     );
     let mechanisms = match &g.mechanisms {
         None => Mechanisms::ALL,
@@ -60,7 +75,7 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         subdivisions: g.subdivisions,
         contrast: g.contrast,
         weights: g.weights,
-        window_depth: g.window_depth,
+        window_depth,
         mechanisms,
         exact_direct: g.exact_direct,
         analytic_spheres: g.analytic_spheres,

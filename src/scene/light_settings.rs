@@ -17,7 +17,7 @@ pub(super) fn light(light: &LightFile, eye: DVec3) -> Result<Light> {
             position,
             intensity,
         } => Ok(Light::Point(PointLight {
-            position: validate::vec3("position", *position)?,
+            position: validate::position("position", *position)?,
             intensity: validate::colour("intensity", *intensity)?,
             name: name.clone(),
         })),
@@ -41,7 +41,7 @@ pub(super) fn light(light: &LightFile, eye: DVec3) -> Result<Light> {
                 "radius",
                 "radius must be a positive number, got {radius}"
             );
-            let at = validate::vec3("centre", *centre)?;
+            let at = validate::position("centre", *centre)?;
             ensure_valid!(
                 (eye - at).length() > *radius,
                 "radius",
@@ -87,7 +87,7 @@ pub(super) fn light(light: &LightFile, eye: DVec3) -> Result<Light> {
                 (None, None) => SpotDistribution::CosinePower(0.0),
             };
             Ok(Light::Spot(SpotLight {
-                position: validate::vec3("position", *position)?,
+                position: validate::position("position", *position)?,
                 axis: validate::direction("axis", *axis)?,
                 cone_angle: cone_angle.to_radians(),
                 intensity: validate::colour("intensity", *intensity)?,

@@ -30,6 +30,7 @@ pub struct ObjModel {
 
 pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjModel> {
     let bytes = resources.read(path)?;
+    text_only(path, &bytes)?;
     let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
     let options = tobj::LoadOptions {
         single_index: false,
@@ -43,6 +44,7 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
         tobj::load_obj_buf(&mut BufReader::new(bytes.as_slice()), &options, |mtl| {
             let data = resources
                 .read(&dir.join(mtl))
+                .and_then(|data| text_only(&dir.join(mtl), &data).map(|()| data))
                 .and_then(|data| short_colour(&data).map_or(Ok(data), Err))
                 .map_err(|e| {
                     mtl_error.replace(Some(e));
@@ -126,6 +128,46 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
             }
         }
     }
+    let text = String::from_utf8_lossy(&bytes);
+    let short = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("f ") && l.split_whitespace().count() < 4)
+        .count();
+    if short > 0 {
+        out.warnings.push(format!(
+            "{}: {short} faces of fewer than 3 vertices (points or lines, not polygons) were left out",
+            path.display()
+        ));
+    }
+    let has_library = text.lines().any(|l| l.trim_start().starts_with("mtllib "));
+    if let Some(name) = text
+        .lines()
+        .filter(|_| has_library)
+        .filter_map(|l| l.trim().strip_prefix("usemtl "))
+        .map(str::trim)
+        .find(|name| !out.materials.iter().any(|m| m.name == *name))
+    {
+        let known: Vec<&str> = out.materials.iter().map(|m| m.name.as_str()).collect();
+        return Err(Error::Model {
+            path: path.to_path_buf(),
+            message: format!(
+                "usemtl {name}: no such material in its MTL file (defined: {})",
+                if known.is_empty() {
+                    "none".to_string()
+                } else {
+                    known.join(", ")
+                }
+            ),
+        });
+    }
+    if out.faces.is_empty() {
+        return Err(Error::Model {
+            path: path.to_path_buf(),
+            message:
+                "no face to draw: an OBJ model needs `f` lines of 3 or more vertices with an area"
+                    .into(),
+        });
+    }
     Ok(out)
 }
 
@@ -203,6 +245,23 @@ fn short_colour(mtl: &[u8]) -> Option<Error> {
 
 /// The first line (1-based, and its text) an OBJ parse error `error` can be blamed
 /// on: tobj reports what went wrong, not where.
+/// OBJ and MTL files are text: a byte that is not UTF-8 is named with its line
+/// (the reader would say only "read error").
+fn text_only(path: &Path, bytes: &[u8]) -> Result<()> {
+    let Err(e) = std::str::from_utf8(bytes) else {
+        return Ok(());
+    };
+    let at = e.valid_up_to();
+    let line = bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1;
+    Err(Error::Model {
+        path: path.to_path_buf(),
+        message: format!(
+            "line {line}: byte 0x{:02x} is not UTF-8 text (OBJ and MTL files are text)",
+            bytes[at]
+        ),
+    })
+}
+
 fn first_bad_line(text: &str, error: &tobj::LoadError) -> Option<(usize, String)> {
     use tobj::LoadError as E;
     let numbers = |rest: &str, least: usize, most: usize| {

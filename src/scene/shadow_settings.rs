@@ -33,6 +33,18 @@ pub fn from_file(s: &ShadowsFile) -> Result<Settings> {
         "shadows.pcf must be an odd kernel size from 1 to 15, got {}",
         s.pcf
     );
+    if let Some(filter @ (MapFilter::None | MapFilter::PercentageCloser)) = s.map_filter {
+        let name = match filter {
+            MapFilter::None => "none",
+            _ => "percentage-closer",
+        };
+        ensure_valid!(
+            s.pcf == 1,
+            "shadows.pcf",
+            "shadows.pcf = {} is the box filter's kernel, which map_filter = \"{name}\" does not use: set map_filter = \"box\", or leave pcf out",
+            s.pcf
+        );
+    }
     let n = s.pcf_samples.isqrt();
     ensure_valid!(
         (1..=1024).contains(&s.pcf_samples) && n * n == s.pcf_samples,

@@ -50,7 +50,7 @@ pub fn set(table: &mut Table, assignment: &str) -> Result<()> {
     if keys.iter().any(|k| k.is_empty()) {
         return Err(refuse(format!("the key `{path}` has an empty part")));
     }
-    let value = parse_value(raw.trim());
+    let value = parse_value(raw.trim()).map_err(refuse)?;
     let mut slot = Slot::Table(table);
     for (depth, key) in keys.iter().enumerate() {
         let last = depth + 1 == keys.len();
@@ -153,12 +153,22 @@ impl<'a> From<&'a mut Value> for Slot<'a> {
     }
 }
 
-fn parse_value(raw: &str) -> Value {
-    format!("v = {raw}")
+fn parse_value(raw: &str) -> std::result::Result<Value, String> {
+    if let Some(value) = format!("v = {raw}")
         .parse::<Table>()
         .ok()
         .and_then(|mut t| t.remove("v"))
-        .unwrap_or_else(|| Value::String(raw.to_string()))
+    {
+        return Ok(value);
+    }
+    // A whole number TOML cannot hold would become a string, and be refused as one.
+    let digits = raw.trim_start_matches(['-', '+']).replace('_', "");
+    if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(format!(
+            "{raw} is beyond the whole numbers a scene holds (-9223372036854775808 to 9223372036854775807)"
+        ));
+    }
+    Ok(Value::String(raw.to_string()))
 }
 
 /// The index of `name` among `known` (things of `kind`), or an error at `key` that

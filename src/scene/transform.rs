@@ -8,20 +8,41 @@ use glam::{DMat3, DMat4, DVec3};
 /// The matrix of a list of steps, the first step applied first.
 pub fn matrix(steps: &[TransformStep]) -> Result<DMat4> {
     let mut m = DMat4::IDENTITY;
-    for step in steps {
+    for (i, step) in steps.iter().enumerate() {
+        let key = |what: &str| format!("transform[{i}].{what}");
         let s = match step {
-            TransformStep::Translate(t) => DMat4::from_translation(DVec3::from(*t)),
-            TransformStep::Scale(Scale::Uniform(k)) => DMat4::from_scale(DVec3::splat(*k)),
-            TransformStep::Scale(Scale::PerAxis(k)) => DMat4::from_scale(DVec3::from(*k)),
-            TransformStep::Rotate { axis, degrees } => {
-                let axis = DVec3::from(*axis);
-                if axis.length() == 0.0 {
+            TransformStep::Translate(t) => {
+                DMat4::from_translation(super::validate::vec3(&key("translate"), *t)?)
+            }
+            TransformStep::Scale(scale) => {
+                let k = match scale {
+                    Scale::Uniform(k) => DVec3::splat(*k),
+                    Scale::PerAxis(k) => DVec3::from(*k),
+                };
+                if !k.is_finite() || k.cmpeq(DVec3::ZERO).any() {
                     return Err(Error::invalid(
-                        "transform",
-                        "rotate: the axis must be a non-zero vector",
+                        key("scale"),
+                        format!(
+                            "{}: a scale must be finite and not zero on any axis, got {:?}",
+                            key("scale"),
+                            k.to_array()
+                        ),
                     ));
                 }
-                DMat4::from_axis_angle(axis.normalize(), degrees.to_radians())
+                DMat4::from_scale(k)
+            }
+            TransformStep::Rotate { axis, degrees } => {
+                let axis = super::validate::direction(&key("rotate.axis"), *axis)?;
+                if !degrees.is_finite() {
+                    return Err(Error::invalid(
+                        key("rotate.degrees"),
+                        format!(
+                            "{} must be a finite number, got {degrees}",
+                            key("rotate.degrees")
+                        ),
+                    ));
+                }
+                DMat4::from_axis_angle(axis, degrees.to_radians())
             }
         };
         m = s * m;
@@ -29,7 +50,7 @@ pub fn matrix(steps: &[TransformStep]) -> Result<DMat4> {
     if !m.is_finite() || m.determinant() == 0.0 {
         return Err(Error::invalid(
             "transform",
-            "the transform is degenerate (a zero or non-finite scale)",
+            "transform: its steps together leave floating point (scales whose product overflows or vanishes)",
         ));
     }
     Ok(m)

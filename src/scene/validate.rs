@@ -21,6 +21,22 @@ pub fn vec3(what: &str, v: Vec3File) -> Result<DVec3> {
     Ok(DVec3::from(v))
 }
 
+/// The largest coordinate a scene holds, in scene units. Areas, squared distances
+/// and form factors multiply coordinates together: beyond this they would leave
+/// floating point, and a polygon be called empty or a light infinitely far.
+pub const MAX_COORDINATE: f64 = 1e12;
+
+/// A point of the scene: finite, within ±`MAX_COORDINATE`.
+pub fn position(what: &str, v: Vec3File) -> Result<DVec3> {
+    let p = vec3(what, v)?;
+    ensure_valid!(
+        p.abs().max_element() <= MAX_COORDINATE,
+        what,
+        "{what} = {v:?} lies beyond ±{MAX_COORDINATE:e}, the largest coordinate a scene holds (areas and distances would leave floating point)"
+    );
+    Ok(p)
+}
+
 /// A direction: finite, not zero; returned as a unit vector.
 pub fn direction(what: &str, v: Vec3File) -> Result<DVec3> {
     let d = vec3(what, v)?.normalize_or_zero();

@@ -71,14 +71,34 @@ pub(crate) const COUNTS: super::CountBuffer = super::CountBuffer {
     description: "shadow volumes of light {l} containing each visible point (Crow's count; colour-mapped)",
 };
 
-/// One line per object whose volume may leak light.
+/// One line naming the objects whose volumes may leak light, if any: Crow's count
+/// assumes closed objects, and an open one's volume has sides missing where its
+/// boundary edges are. Whether a leak reaches the image depends on where the eye's
+/// rays cross those sides, so the line says how to check.
 pub(crate) fn leak_warnings(scene: &Scene) -> Vec<String> {
-    open_objects(scene)
-        .into_iter()
-        .map(|name| {
-            format!("object `{name}` is not a closed 2-manifold: its shadow volume may leak light")
-        })
-        .collect()
+    let open = open_objects(scene);
+    if open.is_empty() {
+        return Vec::new();
+    }
+    const NAMED: usize = 5;
+    let mut names: Vec<String> = open.iter().take(NAMED).map(|n| format!("`{n}`")).collect();
+    if open.len() > NAMED {
+        names.push(format!("and {} more", open.len() - NAMED));
+    }
+    let (count, are) = match open.len() {
+        1 => (
+            "1 object is not a closed 2-manifold".to_string(),
+            "its shadow volume",
+        ),
+        n => (
+            format!("{n} objects are not closed 2-manifolds"),
+            "their shadow volumes",
+        ),
+    };
+    vec![format!(
+        "{count} ({}): {are} may leak light where a view ray crosses a missing side; compare with --shadows ray-cast to see whether this image is touched",
+        names.join(", ")
+    )]
 }
 
 /// A shadow polygon: the quad through a silhouette edge, with its normal pointing out

@@ -495,9 +495,39 @@ fn shadow_methods_and_the_visibility_buffer() {
     assert_eq!(run.code, 0);
     assert!(
         run.stderr
-            .contains("warning: object `tube` is not a closed 2-manifold"),
+            .contains("warning: 1 object is not a closed 2-manifold (`tube`)"),
         "{}",
         run.stderr
+    );
+    // The Cornell box's open walls and blocks: one line, naming them all.
+    let run = lumiere(
+        &[
+            "render",
+            "cornell-box-point",
+            "--shadows",
+            "shadow-volumes",
+            "--width",
+            "16",
+            "--height",
+            "12",
+            "-o",
+            "c.png",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let warnings: Vec<&str> = run
+        .stderr
+        .lines()
+        .filter(|l| l.starts_with("warning:"))
+        .collect();
+    assert_eq!(warnings.len(), 1, "{}", run.stderr);
+    assert!(
+        warnings[0].starts_with(
+            "warning: 3 objects are not closed 2-manifolds (`cornell/left`, `cornell/short_block`, `cornell/tall_block`)"
+        ),
+        "{}",
+        warnings[0]
     );
 }
 

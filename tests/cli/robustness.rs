@@ -157,6 +157,77 @@ fn options_that_would_be_ignored_are_refused_or_do_what_they_say() {
             vec!["render", "cornell-box-point", "--aov", "all", "-o", "-"],
             "--aov all writes a directory of images: give -o DIR, not -",
         ),
+        // Settings of one method given to another that ignores them.
+        (
+            vec![
+                "render",
+                "ray-tracing",
+                "--shadows",
+                "shadow-map",
+                "-o",
+                "x.png",
+            ],
+            "shadows.method = \"shadow-map\": ray tracing (global.method = \"ray-tracing\") casts its own shadow rays",
+        ),
+        (
+            vec![
+                "render",
+                "ray-tracing",
+                "--set",
+                "global.window_depth=3",
+                "-o",
+                "x.png",
+            ],
+            "global.window_depth = 3 is the two-pass methods'",
+        ),
+        (
+            vec![
+                "render",
+                "ray-tracing",
+                "--set",
+                "global.mechanisms=[\"diffuse-diffuse\"]",
+                "-o",
+                "x.png",
+            ],
+            "global.mechanisms selects the two-pass methods' transfers",
+        ),
+        (
+            vec![
+                "render",
+                "shadow-map-box",
+                "--set",
+                "shadows.map_filter=\"none\"",
+                "-o",
+                "x.png",
+            ],
+            "shadows.pcf = 5 is the box filter's kernel, which map_filter = \"none\" does not use",
+        ),
+        (
+            vec![
+                "render",
+                "shadow-map-pcf",
+                "--set",
+                "shadows.pcf=3",
+                "-o",
+                "x.png",
+            ],
+            "shadows.pcf = 3 is the box filter's kernel, which map_filter = \"percentage-closer\" does not use",
+        ),
+        (
+            vec![
+                "envmap",
+                "--from",
+                "a.png",
+                "--layout",
+                "cube",
+                "--sphere",
+                "--set",
+                "camera.width=8",
+                "-o",
+                "x.png",
+            ],
+            "'--from <MAP>' cannot be used with '--set <KEY=VALUE>'",
+        ),
     ] {
         let run = lumiere(&args, d);
         assert_clear_error(&run, fragment, &out);
@@ -355,4 +426,297 @@ fn a_light_that_gives_nothing_is_warned_about() {
     let dir = workspace(&[("s.toml", &scene(CAMERA, ""))]);
     let run = lumiere(&["render", "s.toml", "-o", "out.png"], dir.path());
     assert!(!run.stderr.contains("is zero"), "{}", run.stderr);
+}
+
+/// Messages say what was given in the scene's words: a whole number past what a
+/// scene holds, a number where a name goes; a megabyte name or a key of 100,000
+/// characters is cut to its ends; a refusal that can be made before a solve is.
+#[test]
+fn messages_name_the_value_in_the_scene_words() {
+    let s = [("s.toml", scene(CAMERA, ""))];
+    let s: Vec<(&str, &str)> = s.iter().map(|(n, t)| (*n, t.as_str())).collect();
+    render_error(
+        &s,
+        &["s.toml", "--set", "shadows.seed=18446744073709551615"],
+        "18446744073709551615 is beyond the whole numbers a scene holds",
+    );
+    render_error(
+        &s,
+        &["s.toml", "--set", "render.shading=3"],
+        "render.shading: expected one of its names, in quotes",
+    );
+    let dir = workspace(&s);
+    let d = dir.path();
+    let out = d.join("never.png");
+    let key = format!("render.{}=1", "k".repeat(100_000));
+    let run = lumiere(&["render", "s.toml", "--set", &key, "-o", "never.png"], d);
+    assert_clear_error(&run, "characters]", &out);
+    assert!(run.stderr.len() < 1000, "{} bytes", run.stderr.len());
+    let name = "m".repeat(1 << 20);
+    let text = scene(CAMERA, "").replace("material = \"grey\"", &format!("material = \"{name}\""));
+    std::fs::write(d.join("long.toml"), text).unwrap();
+    let run = lumiere(&["render", "long.toml", "-o", "never.png"], d);
+    assert_clear_error(&run, "characters]", &out);
+    assert!(run.stderr.len() < 1000, "{} bytes", run.stderr.len());
+    // Refused before the solve, and naming the key that made the count.
+    let run = lumiere_within_30_s(
+        &[
+            "render",
+            "radiosity-gathering",
+            "--aov",
+            "hemicube-top",
+            "--hemicube-element",
+            "99999999",
+            "-o",
+            "never.png",
+        ],
+        d,
+    );
+    assert_clear_error(&run, "--hemicube-element 99999999: the mesh has", &out);
+    let run = lumiere(
+        &[
+            "render",
+            "radiosity-gathering",
+            "--patch-size",
+            "1e-9",
+            "-o",
+            "never.png",
+        ],
+        d,
+    );
+    assert_clear_error(&run, "radiosity.patch_size", &out);
+    assert!(
+        run.stderr.contains("more than 1.8e19 patches"),
+        "{}",
+        run.stderr
+    );
+    // A byte that is not text, with its line.
+    std::fs::write(
+        d.join("bad.obj"),
+        b"v 0 0 0\nv 1 0 0\nv 0 \xff 1\nf 1 2 3\n",
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("obj.toml"),
+        scene(
+            CAMERA,
+            "\n[[objects]]\nshape = \"obj\"\nfile = \"bad.obj\"\nmaterial = \"grey\"\n",
+        ),
+    )
+    .unwrap();
+    let run = lumiere(&["render", "obj.toml", "-o", "never.png"], d);
+    assert_clear_error(&run, "line 3: byte 0xff is not UTF-8 text", &out);
+    // Standard output that cannot be written is named.
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let listed = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .arg("list")
+        .stdout(full)
+        .output()
+        .unwrap();
+    assert_ne!(listed.status.code(), Some(0));
+    let stderr = String::from_utf8_lossy(&listed.stderr);
+    assert!(
+        stderr.starts_with("error: writing standard output: No space left on device"),
+        "{stderr}"
+    );
+}
+
+/// A warning said for every polygon of one misplaced object is said once, with
+/// its count.
+#[test]
+fn a_warning_said_many_times_is_said_once_with_its_count() {
+    let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\n");
+    obj += &"f 1 2 4\n".repeat(40);
+    obj += "f 1 2 3\n";
+    let text = scene(
+        CAMERA,
+        "\n[[objects]]\nshape = \"obj\"\nfile = \"flat.obj\"\nmaterial = \"grey\"\n",
+    );
+    let dir = workspace(&[("flat.obj", &obj), ("s.toml", &text)]);
+    let run = lumiere(&["render", "s.toml", "-o", "s.png"], dir.path());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let warnings: Vec<&str> = run
+        .stderr
+        .lines()
+        .filter(|l| l.contains("zero area"))
+        .collect();
+    assert_eq!(warnings.len(), 1, "{}", run.stderr);
+    assert!(
+        warnings[0].ends_with("a face of zero area was dropped (40 times)"),
+        "{}",
+        warnings[0]
+    );
+}
+
+/// Inputs that rendered black, or were misreported: a light or an object placed
+/// beyond what floating point measures, a step of a transform that is not a
+/// number, an environment image that is not radiance, a PFM of scale 0, OBJ
+/// files with nothing to draw or naming materials their MTL does not define.
+#[test]
+fn misplaced_and_empty_inputs_are_named() {
+    let with = |extra: &str| scene(CAMERA, extra);
+    let object = |extra: &str| {
+        with(&format!(
+            "\n[[objects]]\nshape = \"quad\"\nmaterial = \"grey\"\n{extra}\n"
+        ))
+    };
+    let obj = |file: &str| {
+        with(&format!(
+            "\n[[objects]]\nshape = \"obj\"\nfile = \"{file}\"\nmaterial = \"grey\"\n"
+        ))
+    };
+    let pfm = |scale: &str, value: f32| {
+        let mut bytes = format!("PF\n2 1\n{scale}\n").into_bytes();
+        for _ in 0..6 {
+            bytes.extend(value.to_le_bytes());
+        }
+        bytes
+    };
+    let dir = workspace(&[
+        ("empty.obj", ""),
+        ("text.obj", "this is a note, not a model\n"),
+        ("note.mtl", "a note, not materials\n"),
+        (
+            "named.obj",
+            "mtllib note.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n",
+        ),
+        (
+            "lines.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\nf 3\nf 1 2 3\n",
+        ),
+    ]);
+    let d = dir.path();
+    std::fs::write(d.join("nan.pfm"), pfm("-1.0", f32::NAN)).unwrap();
+    std::fs::write(d.join("negative.pfm"), pfm("-1.0", -1.0)).unwrap();
+    std::fs::write(d.join("zero-scale.pfm"), pfm("0", 1.0)).unwrap();
+    let environment = |file: &str| {
+        with(&format!(
+            "\n[environments.e]\nimage = \"{file}\"\nlayout = \"lat-long\"\n\n[render]\nbackdrop = \"e\"\n"
+        ))
+    };
+    let far_light =
+        scene(CAMERA, "").replace("position = [0.0, 2.0, 2.0]", "position = [1e308, 2.0, 2.0]");
+    let cases = [
+        (far_light, "lies beyond ±1e12"),
+        (
+            object("transform = [{ scale = 1e308 }]"),
+            "transform: the object reaches",
+        ),
+        (
+            object("transform = [{ translate = [nan, 0.0, 0.0] }]"),
+            "transform[0].translate must be finite numbers",
+        ),
+        (
+            object("transform = [{ rotate = { axis = [0.0, nan, 1.0], degrees = 30.0 } }]"),
+            "transform[0].rotate.axis must be finite numbers",
+        ),
+        (
+            object("transform = [{ scale = [1.0, 0.0, 1.0] }]"),
+            "transform[0].scale: a scale must be finite and not zero",
+        ),
+        (
+            environment("nan.pfm"),
+            "texels are not radiance (finite, at least 0): the first, at x = 0, y = 0, is (NaN, NaN, NaN)",
+        ),
+        (
+            environment("negative.pfm"),
+            "2 of its texels are not radiance",
+        ),
+        (environment("zero-scale.pfm"), "bad PFM scale: 0"),
+        (obj("empty.obj"), "no face to draw"),
+        (obj("text.obj"), "no face to draw"),
+        (
+            obj("named.obj"),
+            "usemtl red: no such material in its MTL file (defined: none)",
+        ),
+    ];
+    let out = d.join("never.png");
+    for (text, fragment) in &cases {
+        std::fs::write(d.join("case.toml"), text).unwrap();
+        let run = lumiere(&["render", "case.toml", "-o", "never.png"], d);
+        assert_clear_error(&run, fragment, &out);
+    }
+    // Faces of one or two vertices are left out with a word.
+    std::fs::write(d.join("lines.toml"), obj("lines.obj")).unwrap();
+    let run = lumiere(&["render", "lines.toml", "-o", "lines.png"], d);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stderr.contains("lines.obj: 2 faces of fewer than 3 vertices (points or lines, not polygons) were left out"),
+        "{}",
+        run.stderr
+    );
+    // envmap reads its --from map as radiance too.
+    let run = lumiere(
+        &[
+            "envmap",
+            "--from",
+            "nan.pfm",
+            "--layout",
+            "lat-long",
+            "--cube",
+            "-o",
+            "never.png",
+        ],
+        d,
+    );
+    assert_clear_error(&run, "nan.pfm: 2 of its texels are not radiance", &out);
+}
+
+/// `--threads N` runs the passes on N threads, to the same image; `list --ids`
+/// prints the ids alone.
+#[test]
+fn threads_and_ids_for_scripts() {
+    let dir = workspace(&[]);
+    let d = dir.path();
+    for threads in ["1", "2"] {
+        let out = format!("t{threads}.pfm");
+        let run = lumiere(
+            &[
+                "--threads",
+                threads,
+                "render",
+                "cornell-box-point",
+                "--width",
+                "40",
+                "--height",
+                "30",
+                "-o",
+                &out,
+            ],
+            d,
+        );
+        assert_eq!(run.code, 0, "{}", run.stderr);
+    }
+    assert_eq!(
+        std::fs::read(d.join("t1.pfm")).unwrap(),
+        std::fs::read(d.join("t2.pfm")).unwrap()
+    );
+    let run = lumiere(
+        &[
+            "render",
+            "cornell-box-point",
+            "--threads",
+            "0",
+            "-o",
+            "x.png",
+        ],
+        d,
+    );
+    assert_clear_error(
+        &run,
+        "'--threads <N>': must be at least 1",
+        &d.join("x.png"),
+    );
+    let run = lumiere(&["list", "--ids"], d);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let ids: Vec<&str> = run.stdout.lines().collect();
+    assert!(ids.len() > 50, "{}", run.stdout);
+    assert!(
+        ids.contains(&"cornell-box") && ids.iter().all(|id| !id.contains(' ')),
+        "{}",
+        run.stdout
+    );
 }

@@ -243,6 +243,23 @@ fn a_second_run_renders_nothing_and_writes_the_same_site() {
     assert_eq!(third.code, 0, "{}", third.stderr);
     assert!(third.stderr.contains("(4 made, 0 from"), "{}", third.stderr);
     assert_eq!(leftovers(dir.path()), Vec::<String>::new());
+    // A file of the user's put in the gallery is not deleted by the next run: the
+    // run is refused, naming it, and the gallery is left as it was.
+    let site = dir.path().join("site");
+    std::fs::write(site.join("notes.txt"), "mine").unwrap();
+    let before = snapshot(&site);
+    let fourth = gallery(&args, dir.path());
+    assert_ne!(fourth.code, 0);
+    assert_eq!(fourth.stderr.lines().count(), 1, "{}", fourth.stderr);
+    assert!(
+        fourth
+            .stderr
+            .contains("holds files the gallery did not write (notes.txt)"),
+        "{}",
+        fourth.stderr
+    );
+    assert_eq!(snapshot(&site), before);
+    assert_eq!(leftovers(dir.path()), Vec::<String>::new());
 }
 
 /// Every file under `dir`, with its bytes.

@@ -52,6 +52,10 @@ struct Manifest {
     program: String,
     version: String,
     ids: Vec<String>,
+    /// Every file the gallery wrote (paths inside it, `/`-separated): any other
+    /// file found there is a user's, and the gallery is not replaced over it.
+    #[serde(default)]
+    files: Vec<String>,
 }
 
 const MANIFEST: &str = "gallery.json";
@@ -175,10 +179,13 @@ pub fn run(args: Args) -> Result<()> {
         &index(&site, &topics, &pages, &entries, size)?,
     )?;
     site.write("style.css", html::STYLESHEET)?;
+    let mut files = files_under(&site.root)?;
+    files.push(MANIFEST.into());
     let manifest = Manifest {
         program: format!("{:016x}", site.program),
         version: env!("CARGO_PKG_VERSION").into(),
         ids: entries.iter().map(|e| e.algorithm.id.clone()).collect(),
+        files,
     };
     site.write(MANIFEST, &serde_json::to_string_pretty(&manifest)?)?;
     let (rendered, reused) = (site.rendered, site.reused);
@@ -229,10 +236,26 @@ fn earlier_gallery(output: &Path) -> Result<Option<PathBuf>> {
     // A gallery is recognised by its manifest, read whole: a stray file of that
     // name does not make a user's directory one to replace.
     let manifest = std::fs::read_to_string(output.join(MANIFEST)).ok();
-    if manifest
+    if let Some(m) = manifest
         .and_then(|text| serde_json::from_str::<Manifest>(&text).ok())
-        .is_some_and(|m| !m.program.is_empty() && !m.version.is_empty())
+        .filter(|m| !m.program.is_empty() && !m.version.is_empty())
     {
+        let foreign: Vec<String> = files_under(output)?
+            .into_iter()
+            .filter(|f| !m.files.is_empty() && !m.files.contains(f))
+            .collect();
+        if !foreign.is_empty() {
+            let mut named: Vec<&str> = foreign.iter().take(5).map(String::as_str).collect();
+            let more = format!("and {} more", foreign.len().saturating_sub(5));
+            if foreign.len() > 5 {
+                named.push(&more);
+            }
+            bail!(
+                "{} holds files the gallery did not write ({}): the gallery replaces its directory whole, so move them or name another directory",
+                output.display(),
+                named.join(", ")
+            );
+        }
         return Ok(Some(output.to_path_buf()));
     }
     let empty = std::fs::read_dir(output)
@@ -246,6 +269,32 @@ fn earlier_gallery(output: &Path) -> Result<Option<PathBuf>> {
         );
     }
     Ok(None)
+}
+
+/// The files under `root`, as `/`-separated paths inside it, sorted.
+fn files_under(root: &Path) -> Result<Vec<String>> {
+    let mut files = Vec::new();
+    let mut folders = vec![PathBuf::new()];
+    while let Some(folder) = folders.pop() {
+        let dir = root.join(&folder);
+        for entry in
+            std::fs::read_dir(&dir).with_context(|| format!("cannot read {}", dir.display()))?
+        {
+            let entry = entry.with_context(|| format!("cannot read {}", dir.display()))?;
+            let inside = folder.join(entry.file_name());
+            if entry.file_type().is_ok_and(|t| t.is_dir()) {
+                folders.push(inside);
+            } else {
+                let parts: Vec<String> = inside
+                    .components()
+                    .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                    .collect();
+                files.push(parts.join("/"));
+            }
+        }
+    }
+    files.sort();
+    Ok(files)
 }
 
 /// A hash of the running program: pictures made by another build are made again.
