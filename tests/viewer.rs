@@ -387,3 +387,30 @@ fn without_a_display_the_viewer_says_so_in_one_line() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("needs a display"), "{stderr}");
 }
+
+/// A DISPLAY where no X server answers: one line naming it, without the windowing
+/// library's source file.
+#[test]
+fn a_display_without_a_server_is_named_in_one_line() {
+    let free = (90..1000)
+        .find(|n| !Path::new(&format!("/tmp/.X11-unix/X{n}")).exists())
+        .unwrap();
+    let display = format!(":{free}");
+    let out = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args(["view", "cornell-box-point"])
+        .env("DISPLAY", &display)
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.starts_with(&format!("error: cannot open the display {display}: ")),
+        "{stderr}"
+    );
+    assert!(
+        !stderr.contains(".rs:") && !stderr.contains(".cargo"),
+        "{stderr}"
+    );
+}

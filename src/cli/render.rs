@@ -16,7 +16,8 @@ use std::path::PathBuf;
 pub struct Args {
     /// A catalogue id (see `lumiere list`) or the path of a .toml scene file.
     scene: String,
-    /// Output image: .png (sRGB), .pfm or .exr (linear radiance).
+    /// Output image: .png (sRGB), .pfm or .exr (linear radiance); `-` writes the
+    /// PNG to standard output.
     #[arg(short, long)]
     output: PathBuf,
     #[command(flatten)]
@@ -76,6 +77,10 @@ pub struct Args {
     frames: Option<PathBuf>,
     #[arg(long, default_value_t = 1, requires = "frames", value_parser = super::at_least_one)]
     frame_every: usize,
+    /// After the image, one line on standard error: its size, the time taken and
+    /// samples per second.
+    #[arg(long)]
+    summary: bool,
     /// Override any scene key, e.g. --set camera.width=64 --set render.shading=flat
     /// (array elements by index: --set objects.0.material=red). Repeatable.
     #[arg(long = "set", value_name = "KEY=VALUE")]
@@ -83,6 +88,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<()> {
+    let started = std::time::Instant::now();
     // Fail on a bad output name before any work is done.
     let aov = args.aov.as_deref();
     match aov {
@@ -90,6 +96,13 @@ pub fn run(args: Args) -> Result<()> {
             bail!("--aov all writes a directory of images: give -o DIR, not -")
         }
         Some("all" | "list") => {}
+        None if args.output.as_os_str() == "-" => {
+            if std::io::IsTerminal::is_terminal(&std::io::stdout()) {
+                bail!(
+                    "-o - writes the image (PNG) to standard output, which is a terminal: pipe it into a program, or give a file"
+                );
+            }
+        }
         _ => {
             ImageFormat::of(&args.output)?;
         }
@@ -153,12 +166,48 @@ pub fn run(args: Args) -> Result<()> {
     }
     match aov {
         None => {
-            let image = renderer.render()?;
+            // Drawn only on a terminal, and only once a frame has run a while.
+            let bar = indicatif::ProgressBar::new(1000).with_style(
+                indicatif::ProgressStyle::with_template(
+                    "{spinner} [{elapsed_precise}] {bar:40} {percent}% rendering",
+                )
+                .expect("a valid template"),
+            );
+            let shown = bar.clone();
+            let begun = std::time::Instant::now();
+            renderer.set_progress(move |done| {
+                if begun.elapsed().as_secs_f64() > 2.0 {
+                    shown.set_position((done * 1000.0) as u64);
+                }
+            });
+            let image = renderer.render();
+            bar.finish_and_clear();
+            let image = image?;
+            if args.summary {
+                let seconds = started.elapsed().as_secs_f64();
+                let c = &renderer.scene().camera;
+                let samples = c.width as u64
+                    * c.height as u64
+                    * (renderer.scene().render.supersample as u64).pow(2);
+                eprintln!(
+                    "rendered {} at {} x {} in {seconds:.2} s: {samples} samples, {:.0} samples/s",
+                    args.scene,
+                    c.width,
+                    c.height,
+                    samples as f64 / seconds.max(1e-9)
+                );
+            }
             let unbounded = image.pixels.iter().filter(|p| !p.is_finite()).count();
             if unbounded > 0 {
                 eprintln!(
                     "warning: {unbounded} pixels have infinite or undefined radiance (a point light on a surface?); PNG shows them white, PFM and EXR keep them"
                 );
+            }
+            if args.output.as_os_str() == "-" {
+                let png = lumiere::internals::image_io::encode(&image, ImageFormat::Png, exposure)?;
+                std::io::Write::write_all(&mut std::io::stdout(), &png)
+                    .context("writing standard output")?;
+                return Ok(());
             }
             Ok(write_image(&image, &args.output, exposure)?)
         }

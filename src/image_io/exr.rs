@@ -38,6 +38,21 @@ const MAX_BLOCK_BYTES: usize = 1 << 28;
 
 /// Refuses an EXR file whose header declares layers, or blocks, larger than lumiere
 /// reads, before any pixel is decoded.
+/// The size of the file's first layer, from its header.
+pub fn dimensions(bytes: &[u8]) -> Result<(u32, u32)> {
+    let meta = ::exr::meta::MetaData::read_from_buffered(bytes, false)
+        .map_err(|e| Error::image(format!("not a readable OpenEXR file: {e}")))?;
+    let header = meta
+        .headers
+        .first()
+        .ok_or_else(|| Error::image("an OpenEXR file without a layer"))?;
+    let side = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+    Ok((
+        side(header.layer_size.width()),
+        side(header.layer_size.height()),
+    ))
+}
+
 fn check_sizes(bytes: &[u8]) -> Result<()> {
     use ::exr::meta::{BlockDescription, MetaData};
     let meta = MetaData::read_from_buffered(bytes, false)

@@ -267,6 +267,25 @@ pub fn decode(bytes: &[u8], format: Format) -> Result<Image> {
     }
 }
 
+/// The width and height an image file's header declares, read without decoding
+/// (nothing is allocated for its pixels).
+pub fn dimensions(bytes: &[u8], format: Format) -> Result<(u32, u32)> {
+    match format {
+        Format::Png => {
+            // The signature, then IHDR: width and height big-endian at 16 and 20.
+            if bytes.len() < 24 || &bytes[..8] != b"\x89PNG\r\n\x1a\n" || &bytes[12..16] != b"IHDR"
+            {
+                return Err(Error::image("not a PNG file"));
+            }
+            let word =
+                |at: usize| u32::from_be_bytes(bytes[at..at + 4].try_into().expect("4 bytes"));
+            Ok((word(16), word(20)))
+        }
+        Format::Pfm => pfm::header(bytes).map(|h| (h.width, h.height)),
+        Format::Exr => exr::dimensions(bytes),
+    }
+}
+
 /// Refuses an image that is to be read as radiance (an environment map) if a
 /// texel is NaN, infinite or negative: it would turn every sum it enters, a
 /// filtered texel, a reflection, into the same. Names the count and the first.

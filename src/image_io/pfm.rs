@@ -27,7 +27,17 @@ pub fn write(image: &Image, mut out: impl std::io::Write) -> std::io::Result<()>
     Ok(())
 }
 
-pub fn decode(bytes: &[u8]) -> Result<Image> {
+/// A PFM header: width, height, the scale (its sign the byte order) and where the
+/// data starts.
+pub struct Header {
+    pub width: u32,
+    pub height: u32,
+    pub scale: f32,
+    data: usize,
+}
+
+/// Reads the header alone: nothing is allocated for the pixels it declares.
+pub fn header(bytes: &[u8]) -> Result<Header> {
     let mut fields = Vec::new();
     let mut at = 0;
     // Three whitespace-separated header tokens after "PF": width, height, scale.
@@ -67,6 +77,21 @@ pub fn decode(bytes: &[u8]) -> Result<Image> {
     if width == 0 || height == 0 {
         return Err(Error::image("the image is empty"));
     }
+    Ok(Header {
+        width,
+        height,
+        scale,
+        data: at,
+    })
+}
+
+pub fn decode(bytes: &[u8]) -> Result<Image> {
+    let Header {
+        width,
+        height,
+        scale,
+        data: at,
+    } = header(bytes)?;
     // The header's size must match the data there is before anything is allocated
     // for it: a crafted header (4294967295 x 4294967295) would overflow or exhaust
     // memory.

@@ -152,6 +152,9 @@ pub(super) fn render_frame(scene: &Scene, plan: &FramePlan, wanted: &[String]) -
         .downsample(n);
         pixels.extend(pixels_of_band.pixels);
         samples = band.samples;
+        if let Some(progress) = &plan.progress {
+            progress(last as f64 / height as f64);
+        }
     }
     Ok(Frame {
         image: Image {

@@ -26,4 +26,9 @@ pub struct FramePlan {
     /// The radiosity element whose hemi-cube item buffers the `hemicube-*` buffers
     /// show.
     pub hemicube_element: usize,
+    /// Told the fraction of the frame done after each band, if anyone asked.
+    pub progress: Option<Progress>,
 }
+
+/// A watcher of a frame's progress: called with the fraction of its rows done.
+pub type Progress = Arc<dyn Fn(f64) + Send + Sync>;

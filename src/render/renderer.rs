@@ -58,6 +58,7 @@ pub struct Renderer {
     built_radiosity: AtomicUsize,
     built_captures: AtomicUsize,
     hemicube_element: usize,
+    progress: Option<super::plan::Progress>,
 }
 
 impl Renderer {
@@ -77,6 +78,7 @@ impl Renderer {
             built_radiosity: AtomicUsize::new(0),
             built_captures: AtomicUsize::new(0),
             hemicube_element: 0,
+            progress: None,
         }
     }
 
@@ -154,6 +156,12 @@ impl Renderer {
     }
 
     /// Chooses the element the `hemicube-*` buffers show.
+    /// Has `progress` told the fraction of each scan-line frame done, band by band
+    /// (a command line's progress bar).
+    pub fn set_progress(&mut self, progress: impl Fn(f64) + Send + Sync + 'static) {
+        self.progress = Some(Arc::new(progress));
+    }
+
     pub fn set_hemicube_element(&mut self, element: usize) {
         self.hemicube_element = element;
     }
@@ -302,6 +310,7 @@ impl Renderer {
             environments,
             occluders,
             hemicube_element: self.hemicube_element,
+            progress: self.progress.clone(),
         })
     }
 

@@ -1691,7 +1691,12 @@ fn compare_refuses_a_crafted_pfm_header() {
     std::fs::write(dir.path().join("one.pfm"), b"PF\n1 1\n-1.0\n0123456789ab").unwrap();
     let run = lumiere(&["compare", "big.pfm", "one.pfm"], dir.path());
     assert_clear_error(&run, "big.pfm", &dir.path().join("nothing"));
-    assert!(run.stderr.contains("PFM image needs"), "{}", run.stderr);
+    // Refused from its header by the memory budget, before anything is decoded.
+    assert!(
+        run.stderr.contains("big.pfm (18446744065119617025 pixels)"),
+        "{}",
+        run.stderr
+    );
 }
 
 /// The soft-shadow methods' settings and lights: one clear line each.

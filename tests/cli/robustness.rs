@@ -720,3 +720,59 @@ fn threads_and_ids_for_scripts() {
         run.stdout
     );
 }
+
+/// `compare` counts its memory from the two headers before decoding either (an
+/// image that claims 30,000 x 30,000 pixels is refused at once); `-o -` writes
+/// the PNG to standard output; `--summary` says the render's size, time and rate.
+#[test]
+fn compare_under_a_budget_and_an_image_to_standard_output() {
+    let dir = workspace(&[]);
+    let d = dir.path();
+    let never = d.join("never.png");
+    std::fs::write(d.join("huge.png"), png_header_only(30_000, 30_000)).unwrap();
+    let run = lumiere(&["compare", "huge.png", "huge.png"], d);
+    assert_clear_error(
+        &run,
+        "comparing huge.png (900000000 pixels) with huge.png (900000000 pixels) needs about",
+        &never,
+    );
+    assert!(
+        run.stderr.contains("more than --max-memory-mb 4096 allows"),
+        "{}",
+        run.stderr
+    );
+    assert_eq!(run.code, 2);
+    let out = Command::new(env!("CARGO_BIN_EXE_lumiere"))
+        .args([
+            "render",
+            "cornell-box-point",
+            "--width",
+            "256",
+            "--height",
+            "192",
+            "-o",
+            "-",
+            "--summary",
+        ])
+        .current_dir(d)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(out.stdout.starts_with(b"\x89PNG\r\n\x1a\n"));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("rendered cornell-box-point at 256 x 192 in")
+            && stderr.contains("49152 samples"),
+        "{stderr}"
+    );
+    std::fs::write(d.join("a.png"), &out.stdout).unwrap();
+    let run = lumiere(&["compare", "a.png", "a.png", "--max-memory-mb", "1"], d);
+    assert_clear_error(&run, "more than --max-memory-mb 1 allows", &never);
+    let run = lumiere(&["compare", "a.png", "a.png"], d);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("rmse"), "{}", run.stdout);
+}

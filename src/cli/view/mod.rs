@@ -76,7 +76,20 @@ pub fn run(args: Args) -> Result<()> {
         bail!("lumiere view needs a display: neither DISPLAY nor WAYLAND_DISPLAY is set");
     }
     let session = Session::new(&args.scene, sets)?;
-    let event_loop = EventLoop::new().context("cannot open the display")?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        // The windowing library's message carries its own source file and line:
+        // of no use to a user, left out.
+        let said = e.to_string();
+        let cause: Vec<&str> = said
+            .split(": ")
+            .filter(|part| !part.contains(".rs:") && !part.starts_with("os error at"))
+            .collect();
+        anyhow::anyhow!(
+            "cannot open the display {}: {} (is an X server running there?)",
+            std::env::var("DISPLAY").unwrap_or_default(),
+            cause.join(": ")
+        )
+    })?;
     let mut viewer = Viewer {
         title: args.scene.clone(),
         session,
