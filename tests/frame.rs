@@ -446,3 +446,25 @@ fn radiosity_takes_textures() {
     }
     assert!(compared > 200, "{compared}");
 }
+
+/// A progress watcher is told, band by band, the fraction of the frame done:
+/// rising, ending at 1, and the image is the one made without it.
+#[test]
+fn progress_is_told_band_by_band_up_to_the_whole_frame() {
+    let scene = scene("cornell-box-point", &["render.band_rows=8"]);
+    let told = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let mut renderer = Renderer::new(scene.clone());
+    let record = told.clone();
+    renderer.set_progress(move |done| record.lock().unwrap().push(done));
+    let image = renderer.render().unwrap();
+    let told = told.lock().unwrap().clone();
+    let bands = scene.camera.height.div_ceil(8) as usize;
+    assert_eq!(told.len(), bands, "{told:?}");
+    assert!(told.windows(2).all(|w| w[0] < w[1]), "{told:?}");
+    assert_eq!(*told.last().unwrap(), 1.0);
+    assert_same(
+        &image,
+        &Renderer::new(scene).render().unwrap(),
+        "with progress",
+    );
+}
