@@ -786,10 +786,11 @@ fn the_cells_tile_and_cover_the_disc() {
     }
 }
 
-/// No cell is a tile wholly outside the disc. Fails: `cells` keeps tiles whose
-/// area inside the disc is rounding (1e-17 to 4e-17, `area > 0.0`) for K = 6, 7 and
-/// 9 to 12; jittered sampling then spends 256 rejected draws on each per sample and
-/// casts a ray of weight ~1e-17 to the rim.
+/// No cell is a tile wholly outside the disc. Failed while `cells` kept every tile
+/// with `area > 0.0`: tiles whose area inside the disc is rounding (1e-17 to 4e-17)
+/// for K = 6, 7 and 9 to 12, on each of which jittered sampling spent 256 rejected
+/// draws per sample and cast a ray of weight ~1e-17 to the rim. `cells` now keeps
+/// tiles of more than 1e-12 h² inside the disc.
 #[test]
 fn phantom_cells_outside_the_disc() {
     for rings in 0..=12u32 {

@@ -15,8 +15,9 @@
 //! a sample covered by an umbra polygon sees none of the light; one covered only by
 //! penumbra polygons sees the light polygon less each tagged occluder projected from
 //! the sample onto the light's plane (a convex hole cut to the light by
-//! Sutherland–Hodgman when one occluder is in the way, Weiler–Atherton subtraction
-//! when several overlap), and shading takes Lambert's contour integral over what
+//! Sutherland–Hodgman; when several overlap, the light is cut along each hole's
+//! edges in turn into disjoint convex pieces, `convex::subtract`), and shading takes
+//! Lambert's contour integral over what
 //! remains (`LightVisibility::Emitter`); elsewhere the light is whole. No sampling.
 //!
 //! Choices the paper leaves to the implementer:
