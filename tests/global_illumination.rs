@@ -825,3 +825,50 @@ fn bad_global_illumination_input_is_refused_in_one_line() {
         }
     }
 }
+
+/// A thin pane transmits both ways in pass 2 as in pass 1: behind a pane facing
+/// the eye, a second pane seen from its back passes the glowing wall behind it, the
+/// same as when it faces the eye, τ₁ τ₂ of the wall's radiance. (A pass-2 ray that
+/// met a polygon from behind brought nothing back: the second pane was black.)
+#[test]
+fn a_pane_seen_from_behind_by_a_second_pass_ray_transmits() {
+    let image = |second_faces_eye: Option<bool>| {
+        let mut text = format!(
+            "{CAMERA}[global]\nmethod = \"rushmeier-torrance\"\n\n[radiosity]\nsolver = \"gathering\"\n\n[materials.first]\ntransmittance = [0.8, 0.8, 0.8]\n\n[materials.second]\ntransmittance = [0.5, 0.5, 0.5]\n\n[materials.glow]\nemission = [1.0, 1.0, 1.0]\n\n"
+        );
+        if let Some(faces_eye) = second_faces_eye {
+            text += &polygon(
+                "first",
+                "first",
+                rectangle(DVec3::new(-2.0, -2.0, 0.0), DVec3::new(3.0, 3.0, 0.0)),
+                -DVec3::Z,
+            );
+            text += &polygon(
+                "second",
+                "second",
+                rectangle(DVec3::new(-2.0, -2.0, 1.0), DVec3::new(3.0, 3.0, 1.0)),
+                if faces_eye { -DVec3::Z } else { DVec3::Z },
+            );
+        }
+        text += &polygon(
+            "wall",
+            "glow",
+            rectangle(DVec3::new(-2.0, -2.0, 2.0), DVec3::new(3.0, 3.0, 2.0)),
+            -DVec3::Z,
+        );
+        render(&scene_from_text(&text, &[])).unwrap()
+    };
+    let centre = |i: &lumiere::Image| i.pixels[(8 * 16 + 8) as usize];
+    let (away, facing, bare) = (image(Some(false)), image(Some(true)), image(None));
+    let expected = 0.8 * 0.5 * centre(&bare);
+    assert!(centre(&bare).x > 0.0);
+    for (what, got) in [
+        ("from behind", centre(&away)),
+        ("from the front", centre(&facing)),
+    ] {
+        assert!(
+            (got - expected).abs().max_element() <= 1e-5 * expected.x,
+            "{what}: {got} against τ₁ τ₂ L = {expected}"
+        );
+    }
+}

@@ -255,8 +255,27 @@ impl SecondPass {
         let Some(polygon) = hit.polygon else {
             return Vec3::ZERO;
         };
-        // Radiosity leaves the front only.
+        // Radiosity leaves the front only; but a thin pane transmits both ways, as
+        // pass 1 has it: seen from behind, it passes on what lies beyond it.
         if direction.dot(hit.geometric_normal) >= 0.0 {
+            let k_t = scene.materials[hit.material].transmittance;
+            let threshold = self.settings.threshold as f32;
+            if self.settings.mechanisms.specular_specular
+                && k_t.max_element() > 0.0
+                && (weight * k_t).max_element() >= threshold
+                && depth < self.settings.depth
+            {
+                return k_t
+                    * self.ray(
+                        scene,
+                        hit.position,
+                        direction,
+                        polygon,
+                        depth + 1,
+                        weight * k_t,
+                        stream,
+                    );
+            }
             return Vec3::ZERO;
         }
         let to_eye = -direction;
