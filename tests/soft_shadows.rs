@@ -188,3 +188,53 @@ fn the_visible_part_of_an_emitter_shades_exactly() {
     }
     assert!(penumbra > 300, "{penumbra}");
 }
+
+/// Soft shadow volumes under a polygon light: a point that no point of the light
+/// shines on (a ceiling above a lamp that emits downwards: every point's weight is
+/// zero) gets nothing from it, not the unweighted fraction of points it can see
+/// (which called it fully lit).
+#[test]
+fn a_point_the_light_cannot_shine_on_gets_nothing() {
+    use lumiere::internals::image_io::BufferData;
+    use lumiere::internals::render::Renderer;
+    let text = "[camera]\neye = [0.0, 1.0, 4.0]\nlook_at = [0.0, 2.5, 0.0]\nfov_y = 60.0\nwidth = 24\nheight = 24\n\
+        [shadows]\nmethod = \"soft-shadow-volumes\"\nlight_points = 4\n\
+        [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n[materials.lamp]\nemission = [5.0, 5.0, 5.0]\n\
+        [[objects]]\nshape = \"polygon\"\nname = \"floor\"\nmaterial = \"grey\"\nvertices = [[-3.0, 0.0, -3.0], [-3.0, 0.0, 3.0], [3.0, 0.0, 3.0], [3.0, 0.0, -3.0]]\n\
+        [[objects]]\nshape = \"polygon\"\nname = \"ceiling\"\nmaterial = \"grey\"\nvertices = [[-3.0, 3.0, -3.0], [3.0, 3.0, -3.0], [3.0, 3.0, 3.0], [-3.0, 3.0, 3.0]]\n\
+        [[objects]]\nshape = \"polygon\"\nname = \"lamp\"\nmaterial = \"lamp\"\nvertices = [[-0.3, 2.0, -0.3], [0.3, 2.0, -0.3], [0.3, 2.0, 0.3], [-0.3, 2.0, 0.3]]\n";
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.toml");
+    std::fs::write(&path, text).unwrap();
+    let scene = lumiere::load_scene(path.to_str().unwrap(), &[]).unwrap();
+    let ceiling = scene
+        .polygons
+        .iter()
+        .position(|p| scene.objects[p.object].name == "ceiling")
+        .unwrap() as u32;
+    let floor = scene
+        .polygons
+        .iter()
+        .position(|p| scene.objects[p.object].name == "floor")
+        .unwrap() as u32;
+    let wanted = ["polygon".to_string(), "visibility-0".to_string()];
+    let frame = Renderer::new(scene).render_with_buffers(&wanted).unwrap();
+    let BufferData::Ids(ids) = &frame.buffer("polygon").unwrap().data else {
+        panic!("ids")
+    };
+    let BufferData::Values { data, channels } = &frame.buffer("visibility-0").unwrap().data else {
+        panic!("values")
+    };
+    let at = |polygon: u32| -> Vec<f32> {
+        ids.iter()
+            .enumerate()
+            .filter(|&(_, &id)| id == polygon)
+            .map(|(k, _)| data[k * channels])
+            .collect()
+    };
+    let (above, below) = (at(ceiling), at(floor));
+    assert!(!above.is_empty() && !below.is_empty());
+    assert!(above.iter().all(|&v| v == 0.0), "ceiling: {above:?}");
+    // The floor below, in the open, sees the whole light.
+    assert!(below.iter().all(|&v| v == 1.0), "floor: {below:?}");
+}

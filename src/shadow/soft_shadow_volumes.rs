@@ -152,13 +152,16 @@ impl FrameShadows for SoftFrame<'_> {
                     }
                 });
         }
-        let n = self.method.points.len() as f64;
+        // A sample no point shines on (behind the emitter's plane, or below its own
+        // horizon: every weight zero, and so for an empty sample) gets nothing; the
+        // unweighted fraction of points it sees would call it lit and hide a wrong
+        // sign.
         let visibility = (0..len)
             .map(|k| {
                 if total[k] > 0.0 {
                     (clear[k] / total[k]) as f32
                 } else {
-                    (1.0 - blocked[k] as f64 / n) as f32
+                    0.0
                 }
             })
             .collect();
