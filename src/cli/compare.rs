@@ -57,18 +57,18 @@ const DECODER_BYTES_PER_PIXEL: u64 = 16;
 const DIFF_BYTES_PER_PIXEL: u64 = 12 + 3;
 
 /// Reads both images' headers and refuses, before decoding either, a comparison
-/// over the budget.
-fn check_memory(args: &Args) -> Result<(Vec<u8>, Vec<u8>)> {
+/// over the budget; then decodes them.
+fn read_within_budget(args: &Args) -> Result<(lumiere::Image, lumiere::Image)> {
     use lumiere::FileOp;
-    use lumiere::internals::image_io::{dimensions, read_file};
-    let read = |path: &std::path::Path| -> Result<(Vec<u8>, u64)> {
+    use lumiere::internals::image_io::{decode, dimensions, read_file};
+    let read = |path: &std::path::Path| -> Result<(Vec<u8>, lumiere::ImageFormat, u64)> {
         let bytes = read_file(path, FileOp::Read)?;
         let format = lumiere::ImageFormat::of(path)?;
         let (w, h) = dimensions(&bytes, format).with_context(|| path.display().to_string())?;
-        Ok((bytes, w as u64 * h as u64))
+        Ok((bytes, format, w as u64 * h as u64))
     };
-    let (a, a_pixels) = read(&args.a)?;
-    let (b, b_pixels) = read(&args.b)?;
+    let (a, a_format, a_pixels) = read(&args.a)?;
+    let (b, b_format, b_pixels) = read(&args.b)?;
     let files = (a.len() + b.len()) as u64;
     let diff = if args.diff.is_some() {
         a_pixels.max(b_pixels).saturating_mul(DIFF_BYTES_PER_PIXEL)
@@ -95,7 +95,13 @@ fn check_memory(args: &Args) -> Result<(Vec<u8>, Vec<u8>)> {
             args.max_memory_mb
         );
     }
-    Ok((a, b))
+    let decoded = |bytes: Vec<u8>, format, path: &std::path::Path| {
+        decode(&bytes, format).with_context(|| path.display().to_string())
+    };
+    Ok((
+        decoded(a, a_format, &args.a)?,
+        decoded(b, b_format, &args.b)?,
+    ))
 }
 
 /// The images differ by more than the thresholds allow: exit status 1, where bad
@@ -144,14 +150,7 @@ pub fn run(args: Args) -> Result<()> {
     {
         bail!("--max-differing {f}: must be a fraction between 0 and 1");
     }
-    let (a, b) = check_memory(&args)?;
-    let decode = |bytes: Vec<u8>, path: &std::path::Path| -> Result<lumiere::Image> {
-        let format = lumiere::ImageFormat::of(path)?;
-        lumiere::internals::image_io::decode(&bytes, format)
-            .with_context(|| path.display().to_string())
-    };
-    let a = decode(a, &args.a)?;
-    let b = decode(b, &args.b)?;
+    let (a, b) = read_within_budget(&args)?;
     let c = compare_images(&a, &b, args.exposure)?;
     if let Some(path) = &args.diff {
         write_image(

@@ -133,7 +133,7 @@ fn remove_spikes(contour: &mut Vec<DVec2>, tolerance: f64) {
 }
 
 /// Distance from `p` to the segment from `a` to `b`.
-pub(crate) fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+fn distance_to_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
     let ab = b - a;
     let t = if ab.length_squared() > 0.0 {
         ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)

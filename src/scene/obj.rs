@@ -30,7 +30,7 @@ pub struct ObjModel {
 
 pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjModel> {
     let bytes = resources.read(path)?;
-    text_only(path, &bytes)?;
+    let text = text_only(path, &bytes)?;
     let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
     let options = tobj::LoadOptions {
         single_index: false,
@@ -44,7 +44,10 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
         tobj::load_obj_buf(&mut BufReader::new(bytes.as_slice()), &options, |mtl| {
             let data = resources
                 .read(&dir.join(mtl))
-                .and_then(|data| text_only(&dir.join(mtl), &data).map(|()| data))
+                .and_then(|data| {
+                    text_only(&dir.join(mtl), &data)?;
+                    Ok(data)
+                })
                 .and_then(|data| short_colour(&data).map_or(Ok(data), Err))
                 .map_err(|e| {
                     mtl_error.replace(Some(e));
@@ -54,7 +57,7 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
         })
         .map_err(|e| Error::Model {
             path: path.to_path_buf(),
-            message: match first_bad_line(&String::from_utf8_lossy(&bytes), &e) {
+            message: match first_bad_line(text, &e) {
                 Some((number, line)) => format!("{e} at line {number}: `{line}`"),
                 None => e.to_string(),
             },
@@ -128,7 +131,6 @@ pub fn load(resources: &dyn Resources, path: &Path, smooth: bool) -> Result<ObjM
             }
         }
     }
-    let text = String::from_utf8_lossy(&bytes);
     let short = text
         .lines()
         .filter(|l| l.trim_start().starts_with("f ") && l.split_whitespace().count() < 4)
@@ -247,9 +249,10 @@ fn short_colour(mtl: &[u8]) -> Option<Error> {
 /// on: tobj reports what went wrong, not where.
 /// OBJ and MTL files are text: a byte that is not UTF-8 is named with its line
 /// (the reader would say only "read error").
-fn text_only(path: &Path, bytes: &[u8]) -> Result<()> {
-    let Err(e) = std::str::from_utf8(bytes) else {
-        return Ok(());
+fn text_only<'a>(path: &Path, bytes: &'a [u8]) -> Result<&'a str> {
+    let e = match std::str::from_utf8(bytes) {
+        Ok(text) => return Ok(text),
+        Err(e) => e,
     };
     let at = e.valid_up_to();
     let line = bytes[..at].iter().filter(|&&b| b == b'\n').count() + 1;
