@@ -289,7 +289,8 @@ impl<'a> FrameShading<'a> {
         let mut lit = Vec3::ZERO;
         for &l in &self.added {
             let light = &self.scene.lights[l];
-            lit += reflected(point, reflectance, light) * self.weight(band, k, l, visibility);
+            let weight = self.weight(band, k, l, visibility, point.normal);
+            lit += reflected(point, reflectance, light) * weight;
         }
         lit
     }
@@ -358,7 +359,10 @@ impl<'a> FrameShading<'a> {
     ) -> Vec3 {
         let scene = self.scene;
         let s = &band.samples[k];
-        let weight = |l: usize| self.weight(band, k, l, visibility);
+        // Flat and Gouraud shading have no normal at the sample: the share of an
+        // extended light is taken over the polygon's hemisphere on the eye's side.
+        let geometric = if front { look.normal } else { -look.normal };
+        let weight = |l: usize| self.weight(band, k, l, visibility, geometric);
         let added = self.added.iter().copied();
         match look.mode {
             ShadingMode::Flat => {
@@ -403,16 +407,23 @@ impl<'a> FrameShading<'a> {
         ))
     }
 
-    /// Light `l`'s weight at sample `k`: its visibility, or Williams's post-pass
-    /// darkening.
+    /// Light `l`'s weight at sample `k`, shaded with unit `normal` (on the eye's
+    /// side): its visibility, or Williams's post-pass darkening.
     #[inline(always)]
-    fn weight(&self, band: &VisibleSurface, k: usize, l: usize, visibility: &Visibility) -> f32 {
+    fn weight(
+        &self,
+        band: &VisibleSurface,
+        k: usize,
+        l: usize,
+        visibility: &Visibility,
+        normal: DVec3,
+    ) -> f32 {
         let v = match visibility.of(l) {
             None => return 1.0,
             Some(LightVisibility::Fraction(f)) => f[k],
             Some(LightVisibility::Emitter(parts)) => match &parts[k] {
                 None => 1.0,
-                Some(part) => self.visible_ratio(band, k, l, part),
+                Some(part) => self.visible_ratio(band, k, l, part, normal),
             },
         };
         if self.scene.shadows.post_pass {
@@ -423,16 +434,23 @@ impl<'a> FrameShading<'a> {
     }
 
     /// The share of a polygon light's projected solid angle that its visible part
-    /// keeps, seen from sample `k`.
-    fn visible_ratio(&self, band: &VisibleSurface, k: usize, l: usize, part: &VisiblePart) -> f32 {
+    /// keeps, seen from sample `k` through the hemisphere of `n`, the normal the
+    /// light model shades it with (interpolated or bumped, turned to the eye), so
+    /// that share times the unshadowed irradiance is the visible part's own. Where
+    /// the receiver's plane cuts the light, that hemisphere holds the part of the
+    /// light on the eye's side, whichever side the light's centre is on.
+    fn visible_ratio(
+        &self,
+        band: &VisibleSurface,
+        k: usize,
+        l: usize,
+        part: &VisiblePart,
+        n: DVec3,
+    ) -> f32 {
         let Light::Polygon(light) = &self.scene.lights[l] else {
             return 1.0;
         };
         let s = &band.samples[k];
-        let mut n = self.scene.polygons[s.polygon as usize].normal;
-        if n.dot(light.centre - s.position) < 0.0 {
-            n = -n;
-        }
         let whole = projected_solid_angle(s.position, n, &light.vertices);
         if whole <= 0.0 {
             return 0.0;

@@ -10,6 +10,9 @@ use std::sync::OnceLock;
 /// One receiver's polygons on the screen, with their edge table.
 pub struct Projected {
     table: EdgeTable,
+    /// Each polygon's id, by its place in the table's list: a polygon that does
+    /// not reach the screen leaves no place, so places and ids differ after it.
+    ids: Vec<u32>,
 }
 
 /// Per receiver, its polygons on this frame's screen, built on first use.
@@ -48,10 +51,16 @@ impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync> ReceiverScreens<F> {
             let polygons = (self.project)(r);
             (!polygons.is_empty()).then(|| Projected {
                 table: EdgeTable::build(&polygons, self.height),
+                ids: polygons.iter().map(|p| p.id).collect(),
             })
         });
         if let Some(p) = projected {
-            spans_inside(&p.table, width, rows, &mut f);
+            let mut ids = Vec::new();
+            spans_inside(&p.table, width, rows, |row, first, last, places| {
+                ids.clear();
+                ids.extend(places.iter().map(|&i| p.ids[i as usize]));
+                f(row, first, last, &ids)
+            });
         }
     }
 }

@@ -342,7 +342,7 @@ impl UmbraPenumbra {
                         continue;
                     }
                     let Some(penumbra) =
-                        penumbra_section(occluder, part, &frame, &outline_2d, self.grazing)
+                        penumbra_section(occluder, part, &frame, normal, &outline_2d, self.grazing)
                     else {
                         continue;
                     };
@@ -465,14 +465,18 @@ impl UmbraPenumbra {
 /// for a pointed cone of half-angle θ it is truncated at P + M·(its two edges), M
 /// the span of P and the outline over cos θ, which loses nothing within the outline;
 /// a cone of half a plane or more is the whole outline.
+///
+/// `normal` is the receiver's normal on the light part's side (the frame's, or its
+/// opposite when the part lies behind the receiver's plane).
 fn penumbra_section(
     occluder: &Occluder,
     part: &[DVec3],
     frame: &PlaneFrame,
+    normal: DVec3,
     outline: &[DVec2],
     grazing: f64,
 ) -> Option<Vec<DVec2>> {
-    let distance = |p: DVec3| (p - frame.origin).dot(frame.normal);
+    let distance = |p: DVec3| (p - frame.origin).dot(normal);
     // The occluder's corners on the light's side of the plane.
     let mut corners: Vec<DVec3> = occluder
         .corners
@@ -496,7 +500,7 @@ fn penumbra_section(
         }
         for &s in part {
             let direction = o - s;
-            let rate = direction.dot(frame.normal);
+            let rate = direction.dot(normal);
             if rate < -grazing * 1e-3 {
                 points.push(frame.coords(o + direction * (d_o / -rate)));
                 toward.push((direction, rate));
