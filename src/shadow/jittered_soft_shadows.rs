@@ -24,9 +24,16 @@
 //!   noise, and full light and umbra stay exact, every ray agreeing there.
 //!
 //! The fraction of the weight whose ray reaches the disc scales the exact
-//! unshadowed irradiance (the sphere's form factor). A ray is blocked by any polygon
-//! between x and its point (the receiver itself excepted); sphere lights cast no
-//! shadow of their own. Scene keys: `[shadows] method = "jittered-soft-shadows"`,
+//! unshadowed irradiance (the sphere's form factor), so the weights are each ray's
+//! share of that irradiance, not of the disc's area: a cell's weight (its area, or
+//! 1 on the regular grid) times cos θ at x (zero below x's horizon, on the side the
+//! eye sees) times cos α / ρ², the solid angle a unit of the disc's area subtends
+//! at its distance ρ. The course weighs the cells by area alone; that share is the
+//! irradiance's only as r/D → 0 and counts the part of the disc below the horizon
+//! as light the receiver gets, so a sphere near or across a receiver's plane came
+//! out too dark or too bright (measured in tests/soft_shadows.rs). A ray is blocked
+//! by any polygon between x and its point (the receiver itself excepted); sphere
+//! lights cast no shadow of their own. Scene keys: `[shadows] method = "jittered-soft-shadows"`,
 //! `rings`, `sampling = "regular" | "jittered"`, `seed`.
 
 use super::{BandShadows, FrameShadows, LightShadows, SceneOccluders};
@@ -155,9 +162,9 @@ impl JitteredSoftShadows {
         self.cells.len()
     }
 
-    /// The visible fraction of the light's disc from `x` on polygon `polygon`, its
-    /// cells sampled from `stream`.
-    pub fn fraction(&self, x: DVec3, polygon: u32, stream: &mut Stream) -> f64 {
+    /// The visible share of the light's irradiance at `x` on polygon `polygon` with
+    /// unit normal `normal` (on the eye's side), its cells sampled from `stream`.
+    pub fn fraction(&self, x: DVec3, normal: DVec3, polygon: u32, stream: &mut Stream) -> f64 {
         let to_x = x - self.light.centre;
         let distance = to_x.length();
         let r = self.light.radius;
@@ -175,6 +182,14 @@ impl JitteredSoftShadows {
                 CellSampling::Jittered => (self.jittered_point(cell, stream), cell.area),
             };
             let target = centre + (t1 * at.x + t2 * at.y) * radius;
+            let ray = target - x;
+            let rho2 = ray.length_squared();
+            let cos_x = normal.dot(ray);
+            if cos_x <= 0.0 {
+                continue; // below the horizon: no irradiance to share
+            }
+            // cos θ cos α / ρ², with cos θ = n·ray/ρ and cos α = −d·ray/ρ.
+            let weight = weight * cos_x * -d.dot(ray) / (rho2 * rho2);
             total += weight;
             if !self.occluders.any_hit(x, target, &[polygon]) {
                 seen += weight;
@@ -200,13 +215,19 @@ impl JitteredSoftShadows {
 }
 
 impl LightShadows for JitteredSoftShadows {
-    fn frame<'a>(&'a self, _scene: &'a Scene, _view: &'a View) -> Box<dyn FrameShadows + 'a> {
-        Box::new(JitteredFrame { method: self })
+    fn frame<'a>(&'a self, scene: &'a Scene, view: &'a View) -> Box<dyn FrameShadows + 'a> {
+        Box::new(JitteredFrame {
+            method: self,
+            scene,
+            eye: view.eye,
+        })
     }
 }
 
 struct JitteredFrame<'a> {
     method: &'a JitteredSoftShadows,
+    scene: &'a Scene,
+    eye: DVec3,
 }
 
 impl FrameShadows for JitteredFrame<'_> {
@@ -222,7 +243,15 @@ impl FrameShadows for JitteredFrame<'_> {
                 let (x, y) = band.position_of(k);
                 let pixel = y as u64 * band.width as u64 + x as u64;
                 let mut stream = Stream::new(m.seed ^ (m.index as u64).rotate_left(32), pixel);
-                m.fraction(s.position, s.polygon, &mut stream) as f32
+                // The geometric normal on the eye's side: the horizon the light model
+                // clips the sphere's cap to.
+                let n = self.scene.polygons[s.polygon as usize].normal;
+                let n = if n.dot(self.eye - s.position) < 0.0 {
+                    -n
+                } else {
+                    n
+                };
+                m.fraction(s.position, n, s.polygon, &mut stream) as f32
             })
             .collect();
         BandShadows::fraction(fractions)
