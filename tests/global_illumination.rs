@@ -2,7 +2,9 @@
 //! reductions to plain radiosity, the extended form factors through a mirror and a
 //! pane against Lambert's closed form on the mirrored (or unmoved) receiver, the
 //! reflected spot's irradiance, a translucent panel between two rooms against the
-//! hand-solved system, and the energy balance of a closed scene.
+//! hand-solved system, light reaching a translucent panel from behind by a mirror or
+//! through a pane (Rushmeier & Torrance's back terms F_b and T_b) against the closed
+//! form, and the energy balance of a closed scene.
 
 mod common;
 
@@ -869,6 +871,106 @@ fn a_pane_seen_from_behind_by_a_second_pass_ray_transmits() {
         assert!(
             (got - expected).abs().max_element() <= 1e-5 * expected.x,
             "{what}: {got} against τ₁ τ₂ L = {expected}"
+        );
+    }
+}
+
+/// The factor from the rectangle [x0, x1] × [y0, y1] to the parallel one
+/// [u0, u1] × [v0, v1] a distance `z` away, in closed form: the corner sum
+/// A₁ F₁₂ = Σ (−1)^(i+j+k+l) G(xᵢ − uₖ, yⱼ − vₗ) with
+/// G(a, b) = [a √(b² + z²) atan(a/√(b² + z²)) + b √(a² + z²) atan(b/√(a² + z²))
+///            − z²/2 ln(a² + b² + z²)] / (2π).
+fn parallel_rectangles(x: [f64; 2], y: [f64; 2], u: [f64; 2], v: [f64; 2], z: f64) -> f64 {
+    let g = |a: f64, b: f64| {
+        let (sa, sb) = ((b * b + z * z).sqrt(), (a * a + z * z).sqrt());
+        (a * sa * (a / sa).atan() + b * sb * (b / sb).atan()
+            - z * z / 2.0 * (a * a + b * b + z * z).ln())
+            / (2.0 * std::f64::consts::PI)
+    };
+    let mut sum = 0.0;
+    for (i, xi) in x.iter().enumerate() {
+        for (j, yj) in y.iter().enumerate() {
+            for (k, uk) in u.iter().enumerate() {
+                for (l, vl) in v.iter().enumerate() {
+                    let sign = if (i + j + k + l) % 2 == 0 { 1.0 } else { -1.0 };
+                    sum += sign * g(xi - uk, yj - vl);
+                }
+            }
+        }
+    }
+    sum / ((x[1] - x[0]) * (y[1] - y[0]))
+}
+
+/// A translucent panel (τ_d = 0.5, no diffuse reflectance) in z = 0 facing +z, and
+/// beside it in its plane a lamp facing −z, which the panel cannot see; behind the
+/// panel (z = −1) a mirror facing it, or a pane with the lamp moved to z = −2 beyond
+/// it facing +z. The only light the panel gets is from its back, by Rushmeier &
+/// Torrance's back terms: ρ_s F_b (the lamp's image in the mirror at z = −2) or τ_s
+/// T_b (the lamp itself through the pane), so B = τ_d ρ_s F B_lamp or τ_d τ_s F
+/// B_lamp with F the closed-form factor between parallel squares 2 apart, offset
+/// by 1.5.
+#[test]
+fn light_reaching_a_translucent_panel_from_behind_by_a_mirror_or_a_pane_is_the_hand_solved_share() {
+    let factor = parallel_rectangles([0.0, 1.0], [0.0, 1.0], [1.5, 2.5], [0.0, 1.0], 2.0);
+    // The corner sum against the aligned unit squares' closed form.
+    let aligned = parallel_rectangles([0.0, 1.0], [0.0, 1.0], [0.0, 1.0], [0.0, 1.0], 1.0);
+    assert!((aligned - opposite_faces()).abs() < 1e-12, "{aligned}");
+    for (window, material, lamp_z, share) in [
+        ("mirror", "mirror = [0.8, 0.8, 0.8]", 0.0, 0.8),
+        ("pane", "transmittance = [0.7, 0.7, 0.7]", -2.0, 0.7),
+    ] {
+        let mut text = format!(
+            "{CAMERA}[global]\nmethod = \"rushmeier-torrance\"\n\n[radiosity]\nsolver = \"gathering\"\nresolution = 256\nelement_size = 0.125\n\n[materials.panel]\ndiffuse = [0.0, 0.0, 0.0]\ntranslucence = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[materials.window]\n{material}\n\n"
+        );
+        text += &polygon(
+            "panel",
+            "panel",
+            rectangle(DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 1.0, 0.0)),
+            DVec3::Z,
+        );
+        let lamp_facing = if window == "mirror" {
+            -DVec3::Z
+        } else {
+            DVec3::Z
+        };
+        text += &polygon(
+            "lamp",
+            "lamp",
+            rectangle(DVec3::new(1.5, 0.0, lamp_z), DVec3::new(2.5, 1.0, lamp_z)),
+            lamp_facing,
+        );
+        text += &polygon(
+            window,
+            "window",
+            rectangle(DVec3::new(-2.0, -2.0, -1.0), DVec3::new(5.0, 3.0, -1.0)),
+            DVec3::Z,
+        );
+        let scene = scene_from_text(&text, &[]);
+        let settings = scene.radiosity.clone().unwrap();
+        let mesh = lumiere::internals::radiosity::mesh(&scene, &settings).unwrap();
+        let estimator = Estimator::new(FormFactorMethod::Hemicube, settings.resolution, &scene);
+        let solved = extended::gather(
+            &scene,
+            &mesh,
+            &estimator,
+            extension_of(&scene),
+            1e-9,
+            u64::MAX,
+        )
+        .unwrap();
+        let (mut sum, mut area) = (0.0, 0.0);
+        for (p, patch) in mesh.patches.iter().enumerate() {
+            if scene.objects[scene.polygons[patch.polygon].object].name == "panel" {
+                sum += solved.patches[p].x * patch.area;
+                area += patch.area;
+            }
+        }
+        let found = sum / area;
+        let expected = 0.5 * share * factor * std::f64::consts::PI;
+        eprintln!("{window}: {found} against {expected} (F = {factor})");
+        assert!(
+            (found - expected).abs() < 0.002 * expected,
+            "{window}: the panel's radiosity {found}, by hand {expected}"
         );
     }
 }
