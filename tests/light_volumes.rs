@@ -268,3 +268,90 @@ fn under_the_sun_shadow_volumes_are_ray_casting() {
     assert!(lit > 100, "{lit} sunlit samples");
     assert_eq!(differing, 0, "{differing} samples differ from ray casting");
 }
+
+/// In a box of medium the sun's light is attenuated on its way in, as a point
+/// light's is. Straight down onto a level ray at height 0.5 in a box 1 high, its
+/// path in the box is 0.5 everywhere: σ_s p E e^(−σ_t 0.5) (1 − e^(−σ_t L)) / σ_t
+/// over the ray's length L in the box. Slanting, its path changes faces along the
+/// ray: against a composite Simpson rule over the ray with the path found by the
+/// slab method at each step.
+#[test]
+fn in_a_box_the_sun_is_attenuated_on_its_way_in() {
+    let boxed = OPEN_SUN.replace(
+        "[medium]\n",
+        "[medium]\nextent = { min = [-5.0, 0.0, -5.0], max = [5.0, 1.0, 5.0] }\n",
+    );
+    let (st, min, max) = (
+        0.2f64,
+        DVec3::new(-5.0, 0.0, -5.0),
+        DVec3::new(5.0, 1.0, 5.0),
+    );
+    // Straight down, in closed form.
+    let scene = scene_file(
+        &boxed.replace(
+            "direction = [0.3, -1.0, -0.2]",
+            "direction = [0.0, -1.0, 0.0]",
+        ),
+        &[],
+    );
+    let medium = scene.medium.clone().unwrap();
+    let ss = medium.scattering();
+    let scattering = Scattering::new(&medium);
+    let (eye, direction) = (DVec3::new(-10.0, 0.5, 0.0), DVec3::X);
+    let found = scattering.inscattered(&scene.lights[0], eye, direction, &[[0.0, 20.0]]);
+    let p = phase(&medium, 0.0);
+    let expected = Vec3::new(2.0, 3.0, 4.0)
+        * (ss * p * (-st * 0.5).exp() * (1.0 - (-st * 10.0).exp()) / st) as f32;
+    let error = (found - expected).abs().max_element() / expected.max_element();
+    assert!(error < 1e-6, "straight down: {found} against {expected}");
+
+    // Slanting, by quadrature.
+    let scene = scene_file(&boxed, &[]);
+    let medium = scene.medium.clone().unwrap();
+    let scattering = Scattering::new(&medium);
+    let lumiere::Light::Distant(sun) = &scene.lights[0] else {
+        panic!("a distant light");
+    };
+    let travel = sun.direction;
+    let eye = DVec3::new(-8.0, 0.9, 3.0);
+    let target = DVec3::new(8.0, 0.05, -4.0);
+    let length = (target - eye).length();
+    let direction = (target - eye) / length;
+    let found = scattering.inscattered(&scene.lights[0], eye, direction, &[[0.0, length]]);
+    let inside = |x: DVec3| (0..3).all(|i| x[i] >= min[i] && x[i] <= max[i]);
+    // From x back towards the sun, where the light entered the box.
+    let way_in = |x: DVec3| {
+        (0..3)
+            .filter(|&i| travel[i] != 0.0)
+            .map(|i| {
+                let (a, b) = ((min[i] - x[i]) / -travel[i], (max[i] - x[i]) / -travel[i]);
+                a.max(b)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let steps = 400_000;
+    let h = length / steps as f64;
+    let entry = (0..=steps)
+        .map(|i| i as f64 * h)
+        .find(|&t| inside(eye + direction * t))
+        .unwrap();
+    let f = |t: f64| {
+        let x = eye + direction * t;
+        if inside(x) {
+            (-st * ((t - entry) + way_in(x))).exp()
+        } else {
+            0.0
+        }
+    };
+    let simpson: f64 = (0..steps / 2)
+        .map(|i| {
+            let t = 2.0 * i as f64 * h;
+            (f(t) + 4.0 * f(t + h) + f(t + 2.0 * h)) * h / 3.0
+        })
+        .sum();
+    let p = phase(&medium, travel.dot(-direction));
+    let expected = sun.irradiance * (medium.scattering() * p * simpson) as f32;
+    let error = (found - expected).abs().max_element() / expected.max_element();
+    eprintln!("slanting: {found} against {expected} (relative {error:e})");
+    assert!(error < 1e-4, "slanting: {found} against {expected}");
+}

@@ -4,7 +4,7 @@
 //! lit ones. It needs no shadow volumes and converges to the integral as the step
 //! shrinks; light volumes must agree with it.
 
-use super::single_scattering::{holds, phase, point_integrand, transmittance};
+use super::single_scattering::{holds, phase, point_integrand, sun_path, transmittance};
 use crate::scene::Light;
 use crate::scene::ray_queries::SceneRays;
 use crate::settings::MediumSettings;
@@ -43,7 +43,8 @@ pub fn inscattered(
                     continue;
                 }
                 let along = transmittance(medium, eye, direction, t);
-                phase(medium, l.direction.dot(-direction)) * along
+                let way_in = (-medium.extinction * sun_path(medium, x, l.direction)).exp();
+                phase(medium, l.direction.dot(-direction)) * along * way_in
             }
             Light::Point(_) | Light::Spot(_) => {
                 let at = light.position().expect("point-like");

@@ -13,10 +13,15 @@
 //! the light's travel and the direction towards the eye. Distances in the medium
 //! count only inside its extent (a box, or everywhere).
 //!
-//! - Distant light: E is constant and unattenuated on its way in (the sun's light
-//!   reaches the medium whole: only the viewing ray is attenuated), and so is θ:
-//!   L_s = σ_s p E (e^(−σ_t a) − e^(−σ_t b)) / σ_t over each lit interval [a, b]
-//!   (shifted by the ray's entry into a box).
+//! - Distant light: θ is constant, and E is the sun's irradiance attenuated on its
+//!   way through the medium to x(t), as a point light's is: inside a box, along its
+//!   path s(t) from where it entered the box. s(t) is the least of three linear
+//!   functions of t (the distances back to the faces the light comes in by), so
+//!   e^(−σ_t ((t − entry) + s(t))) is an exponential of a linear function between
+//!   the t where the least changes, each piece integrated in closed form. A medium
+//!   filling all space leaves the sun unattenuated (Max's convention: on an infinite
+//!   way in it would absorb it all), so there L_s = σ_s p E (e^(−σ_t a) −
+//!   e^(−σ_t b)) / σ_t over each lit interval [a, b].
 //! - Point and spot lights: E(t) = I f(θ_spot) e^(−σ_t r_m) / r², r the distance to
 //!   the light and r_m its part inside the medium; a spot's cone bounds the lit parts
 //!   too (the cone's intervals on the ray, from its quadric). The integral is taken by
@@ -82,6 +87,80 @@ fn medium_length(medium: &MediumSettings, origin: DVec3, direction: DVec3, t: f6
     inside(medium, origin, direction, 0.0, t).map_or(0.0, |(a, b)| b - a)
 }
 
+/// How far the sun's light, travelling along `travel` (unit), has gone through the
+/// medium to reach `x`: from where it entered the box; 0 in a medium filling all
+/// space (see the module's account).
+pub fn sun_path(medium: &MediumSettings, x: DVec3, travel: DVec3) -> f64 {
+    if medium.extent.is_none() {
+        return 0.0;
+    }
+    medium_length(medium, x, -travel, f64::INFINITY)
+}
+
+/// ∫ e^(−σ_t ((t − entry) + s(t))) dt over [a, b] (inside the box), s(t) the sun's
+/// path to eye + t·direction: s = min over the axes the light crosses of A_i + B_i t,
+/// linear between the t where two of them meet.
+fn sunlit_integral(
+    medium: &MediumSettings,
+    eye: DVec3,
+    direction: DVec3,
+    travel: DVec3,
+    (a, b): (f64, f64),
+    entry: f64,
+) -> f64 {
+    let k = medium.extinction;
+    let Some((min, max)) = medium.extent else {
+        return if k > 0.0 {
+            ((-k * (a - entry)).exp() - (-k * (b - entry)).exp()) / k
+        } else {
+            b - a
+        };
+    };
+    if k == 0.0 {
+        return b - a;
+    }
+    // Back towards the sun, w = −travel: the face of axis i the light came in by.
+    let lines: Vec<(f64, f64)> = (0..3)
+        .filter(|&i| travel[i] != 0.0)
+        .map(|i| {
+            let w = -travel[i];
+            let face = if w > 0.0 { max[i] } else { min[i] };
+            ((face - eye[i]) / w, -direction[i] / w)
+        })
+        .collect();
+    let mut cuts = vec![a, b];
+    for (i, &(ai, bi)) in lines.iter().enumerate() {
+        for &(aj, bj) in &lines[i + 1..] {
+            if bi != bj {
+                let t = (aj - ai) / (bi - bj);
+                if t > a && t < b {
+                    cuts.push(t);
+                }
+            }
+        }
+    }
+    cuts.sort_by(f64::total_cmp);
+    let mut total = 0.0;
+    for piece in cuts.windows(2) {
+        let (p, q) = (piece[0], piece[1]);
+        let middle = 0.5 * (p + q);
+        let (line_a, line_b) = lines
+            .iter()
+            .copied()
+            .min_by(|x, y| (x.0 + x.1 * middle).total_cmp(&(y.0 + y.1 * middle)))
+            .unwrap_or((0.0, 0.0));
+        // e^(−k((t − entry) + A + B t)) from p to q.
+        let rate = k * (1.0 + line_b);
+        let start = (-k * (p - entry + line_a + line_b * p)).exp();
+        total += if rate.abs() * (q - p) > 1e-12 {
+            start * -(-rate * (q - p)).exp_m1() / rate
+        } else {
+            start * (q - p)
+        };
+    }
+    total
+}
+
 /// The transmittance of the first `distance` of the ray.
 pub fn transmittance(
     medium: &MediumSettings,
@@ -138,14 +217,9 @@ fn inscattered(
             let p = phase(medium, l.direction.dot(-direction));
             for &[a, b] in lit {
                 if let Some((a, b)) = inside(medium, eye, direction, a, b) {
-                    // e^(−σ_t (t − entry)) over [a, b], entry where the ray enters.
+                    // Entry: where the ray enters the medium.
                     let entry = inside(medium, eye, direction, 0.0, b).map_or(0.0, |(e, _)| e);
-                    let k = medium.extinction;
-                    total += if k > 0.0 {
-                        ((-k * (a - entry)).exp() - (-k * (b - entry)).exp()) / k
-                    } else {
-                        b - a
-                    };
+                    total += sunlit_integral(medium, eye, direction, l.direction, (a, b), entry);
                 }
             }
             total *= sigma_s * p;
