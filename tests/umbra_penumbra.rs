@@ -141,6 +141,16 @@ fn where_the_umbra_vanishes_too() {
     );
 }
 
+/// Under an L-shaped light, cut into convex pieces.
+#[test]
+fn under_a_concave_light() {
+    let (penumbra, umbra) = equals_brute_force(&at_size("umbra-penumbra-concave", 128, 96));
+    assert!(
+        penumbra > 1000 && umbra > 20,
+        "{penumbra} penumbra, {umbra} umbra"
+    );
+}
+
 /// At 200 x 150 the teapot's small faces lie edge-on to the eye often enough that
 /// some of a receiver's umbra and penumbra polygons do not reach the screen; the
 /// ones after them must still be known by their own ids (they were taken for their

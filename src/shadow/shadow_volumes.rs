@@ -174,6 +174,13 @@ pub fn reach(scene: &Scene, source: Source) -> f64 {
 
 /// The shadow polygons of every object for a light from `source`.
 pub fn quads_from(scene: &Scene, source: Source) -> Vec<ShadowQuad> {
+    quads_except(scene, source, None)
+}
+
+/// As `quads_from`, polygon `emitter` (the light's own, whose points are the
+/// sources) casting nothing: a source in its plane sees it edge-on, and the quads
+/// its edges would sweep lie in that plane, where a concave emitter's overlap.
+pub fn quads_except(scene: &Scene, source: Source, emitter: Option<usize>) -> Vec<ShadowQuad> {
     let far = reach(scene, source);
     let mut quads = Vec::new();
     for object in 0..scene.objects.len() {
@@ -183,7 +190,9 @@ pub fn quads_from(scene: &Scene, source: Source) -> Vec<ShadowQuad> {
         let polygons: Vec<_> = scene
             .polygons
             .iter()
-            .filter(|p| p.object == object)
+            .enumerate()
+            .filter(|&(i, p)| p.object == object && Some(i) != emitter)
+            .map(|(_, p)| p)
             .collect();
         // A lone polygon is two-sided: whichever side the light is on faces it.
         let lone = polygons.len() == 1;
@@ -255,6 +264,9 @@ pub struct ShadowVolumes {
     /// How far the quads reach (a distant light's self-shadow test looks that far).
     reach: f64,
     counting: Counting,
+    /// The polygon the source lies on, which casts nothing (a point of an area
+    /// light, for soft shadow volumes).
+    pub(super) emitter: Option<usize>,
 }
 
 impl ShadowVolumes {
@@ -271,6 +283,19 @@ impl ShadowVolumes {
             quads: quads_from(scene, source),
             reach: reach(scene, source),
             counting,
+            emitter: None,
+        }
+    }
+
+    /// Crow's volumes for a point `light` on polygon `emitter`, which casts none.
+    pub fn on_emitter(scene: &Scene, light: DVec3, emitter: usize) -> ShadowVolumes {
+        let source = Source::Point(light);
+        ShadowVolumes {
+            source,
+            quads: quads_except(scene, source, Some(emitter)),
+            reach: reach(scene, source),
+            counting: Counting::ScanOut,
+            emitter: Some(emitter),
         }
     }
 
@@ -354,7 +379,7 @@ impl<'a> CrowFrame<'a> {
             polygons,
             visible,
             steps,
-            start: eye_count_from(scene, view.eye, volumes.source),
+            start: eye_count_except(scene, view.eye, volumes.source, volumes.emitter),
         }
     }
 }
@@ -447,6 +472,11 @@ pub fn counts(scene: &Scene, view: &View, surface: &VisibleSurface, light: DVec3
 /// polygons casting a volume crossed by the segment from the eye back along the
 /// light's travel, beyond the scene).
 pub fn eye_count_from(scene: &Scene, eye: DVec3, source: Source) -> i32 {
+    eye_count_except(scene, eye, source, None)
+}
+
+/// As `eye_count_from`, polygon `emitter` casting no volume.
+pub fn eye_count_except(scene: &Scene, eye: DVec3, source: Source, emitter: Option<usize>) -> i32 {
     let light = match source {
         Source::Point(p) => p,
         Source::Distant(travel) => eye - travel * reach(scene, source),
@@ -458,6 +488,9 @@ pub fn eye_count_from(scene: &Scene, eye: DVec3, source: Source) -> i32 {
     scene
         .polygons
         .iter()
+        .enumerate()
+        .filter(|&(i, _)| Some(i) != emitter)
+        .map(|(_, p)| p)
         .filter(|p| {
             let on_plane = p.vertices[0].position;
             source.faces(p.normal, on_plane)

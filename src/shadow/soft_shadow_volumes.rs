@@ -90,11 +90,14 @@ impl SoftShadowVolumes {
             Light::Polygon(l) => Some(l.normal),
             _ => None,
         };
+        // A point of a polygon light lies on the light's own polygon, which casts no
+        // volume from it.
+        let volumes = |p: DVec3| match light {
+            Light::Polygon(l) => ShadowVolumes::on_emitter(scene, p, l.polygon),
+            _ => ShadowVolumes::new(scene, p),
+        };
         SoftShadowVolumes {
-            points: points
-                .par_iter()
-                .map(|&p| ShadowVolumes::new(scene, p))
-                .collect(),
+            points: points.par_iter().map(|&p| volumes(p)).collect(),
             emitter,
         }
     }

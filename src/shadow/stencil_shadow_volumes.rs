@@ -19,7 +19,7 @@
 //! `[shadows] method = "stencil-shadow-volumes"`.
 
 use super::shadow_volumes::{Counting, Source};
-use super::shadow_volumes::{ShadowVolumes, eye_count_from, on_screen};
+use super::shadow_volumes::{ShadowVolumes, eye_count_except, on_screen};
 use super::{BandShadows, FrameShadows};
 use crate::raster::{EdgeTable, ScreenPolygon, View, VisibleSurface, spans_inside};
 use crate::scene::LightKind;
@@ -75,7 +75,7 @@ impl ShadowVolumes {
             table: EdgeTable::build(&screens, view.height),
             screens,
             steps,
-            start: eye_count_from(scene, view.eye, self.source),
+            start: eye_count_except(scene, view.eye, self.source, self.emitter),
         }
     }
 }
