@@ -1305,3 +1305,41 @@ fn bad_ray_tracing_settings_are_one_error_line_naming_the_key() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+/// Whitted's guard for small objects: a glowing sphere a fifth of a pixel across,
+/// centred between the four corner rays of a pixel, is met by none of them; the
+/// pixel is split because its bounding sphere projects onto it, until a ray meets
+/// it. Without the guard the pixel is the background, as its neighbours are.
+#[test]
+fn a_small_sphere_between_the_corners_is_found_by_its_bounding_sphere() {
+    // 16 x 16 pixels over a 40° field from 10 away: a pixel is
+    // 20 tan 20° / 16 ≈ 0.455 wide at the ball, whose diameter 0.09 is a fifth of
+    // that. The eye is moved by half a pixel so the ball projects onto the centre of
+    // pixel (8, 8), between its corners.
+    let half = 0.5 * 20.0 * 20f64.to_radians().tan() / 16.0;
+    let text = format!(
+        "[camera]\neye = [{}, {half}, 10.0]\nlook_at = [{}, {half}, 0.0]\nfov_y = 40.0\nwidth = 16\nheight = 16\n\
+         [materials.glow]\nemission = [1.0, 1.0, 1.0]\n\
+         [[objects]]\nshape = \"sphere\"\nname = \"ball\"\nmaterial = \"glow\"\nresolution = 12\n\
+         transform = [{{ scale = 0.045 }}]\n",
+        -half, -half
+    );
+    let scene = scene_from_text(&text, &[]);
+    let view = View::new(&scene.camera, 16, 16);
+    let (x, y) = view.project(view.to_eye(DVec3::ZERO));
+    assert!((x - 8.5).abs() < 1e-9 && (y - 8.5).abs() < 1e-9, "{x} {y}");
+    let traced = TracedScene::new(&scene, true);
+    let settings = global("depth = 1\nsubdivisions = 3\ncontrast = 0.1");
+    let tracer = Whitted::new(&scene, &traced, &settings, None);
+    for (i, j) in [(8, 8), (9, 8), (8, 9), (9, 9)] {
+        let t = tracer.through(&view, i as f64, j as f64, 0);
+        assert_eq!(t.object, None, "corner ({i}, {j}) meets the ball");
+    }
+    let (image, rays) = tracer.render(&view);
+    let pixel = |i: u32, j: u32| image.pixels[(j * 16 + i) as usize];
+    assert!(pixel(8, 8).x > 0.0, "the ball's pixel: {}", pixel(8, 8));
+    assert!(rays[8 * 16 + 8] > 1, "the ball's pixel was not split");
+    for (i, j) in [(7, 8), (9, 8), (8, 7), (8, 9)] {
+        assert_eq!(pixel(i, j), Vec3::ZERO, "pixel ({i}, {j})");
+    }
+}

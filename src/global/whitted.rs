@@ -29,6 +29,11 @@
 //! corners of a square differ by more than the contrast, the square is split into
 //! four and the new corners traced, down to a limit; each square's intensity is the
 //! mean of its corners, and the pixel the area-weighted mean of its squares.
+//! Whitted guards small objects the corners might straddle with bounding spheres:
+//! a square is also split while the bounding sphere of an object that none of its
+//! corners' rays met projects onto it and is smaller than it. (Here the sphere
+//! about the object's vertices, projected as a disc of radius f r / z around its
+//! centre's projection; the paper leaves both open.)
 //!
 //! Choices left open by the paper, made here: k_s and k_t are constants, as in
 //! Whitted's images, or (`weights = "fresnel"`) scaled by Fresnel's exact
@@ -86,6 +91,17 @@ pub struct Traced {
     pub radiance: Vec3,
     /// Rays traced: this one and its reflected and refracted descendants.
     pub rays: u32,
+    /// The object this ray met first (`None`: it left the scene).
+    pub object: Option<u32>,
+}
+
+/// An object's bounding sphere seen from the eye: its centre on the screen and its
+/// radius there, in samples.
+#[derive(Clone, Copy, Debug)]
+struct Footprint {
+    object: u32,
+    centre: (f64, f64),
+    radius: f64,
 }
 
 impl<'a> Whitted<'a> {
@@ -127,6 +143,7 @@ impl<'a> Whitted<'a> {
             None => Traced {
                 radiance: self.background(direction),
                 rays: 1,
+                object: None,
             },
         }
     }
@@ -177,7 +194,11 @@ impl<'a> Whitted<'a> {
         );
         let mut rays = 1;
         if depth >= self.settings.depth {
-            return Traced { radiance, rays };
+            return Traced {
+                radiance,
+                rays,
+                object: Some(hit.object as u32),
+            };
         }
         // Indices of the medium left and the medium entered.
         let (eta1, eta2) = match material.ior {
@@ -224,7 +245,11 @@ impl<'a> Whitted<'a> {
                 rays += t.rays;
             }
         }
-        Traced { radiance, rays }
+        Traced {
+            radiance,
+            rays,
+            object: Some(hit.object as u32),
+        }
     }
 
     /// The eye ray through screen point (x, y) of `view`.
@@ -248,6 +273,7 @@ impl<'a> Whitted<'a> {
             })
             .collect();
         let exposure = self.scene.render.exposure;
+        let footprints = self.footprints(view);
         let rows: Vec<Vec<(Vec3, u32)>> = (0..height)
             .into_par_iter()
             .map(|j| {
@@ -267,7 +293,11 @@ impl<'a> Whitted<'a> {
                         };
                         let stream = (height as u64 + 1) * stride
                             + (j as u64 * width as u64 + i as u64) * 4096;
-                        self.subdivide(view, square, c, 0, exposure, stream)
+                        let guard = Guard {
+                            footprints: &footprints,
+                            exposure,
+                        };
+                        self.subdivide(view, square, c, 0, &guard, stream)
                     })
                     .collect()
             })
@@ -300,12 +330,14 @@ impl<'a> Whitted<'a> {
         square: Square,
         c: [Traced; 4],
         level: u32,
-        exposure: f32,
+        guard: &Guard,
         stream: u64,
     ) -> (Vec3, u32) {
         let mean = (c[0].radiance + c[1].radiance + c[2].radiance + c[3].radiance) / 4.0;
         let own = if level == 0 { c[0].rays } else { 0 };
-        if level >= self.settings.subdivisions || !self.differ(&c, exposure) {
+        if level >= self.settings.subdivisions
+            || !(self.differ(&c, guard.exposure) || missed_small_object(&square, &c, guard))
+        {
             return (mean, own);
         }
         let h = square.size / 2.0;
@@ -352,13 +384,36 @@ impl<'a> Whitted<'a> {
                 square,
                 corners,
                 level + 1,
-                exposure,
+                guard,
                 stream.wrapping_mul(4).wrapping_add(q as u64),
             );
             total += value;
             rays += count;
         }
         (total / 4.0, rays)
+    }
+
+    /// The bounding sphere of every object wholly in front of the eye, projected.
+    fn footprints(&self, view: &View) -> Vec<Footprint> {
+        let mut points: Vec<Vec<DVec3>> = vec![Vec::new(); self.scene.objects.len()];
+        for p in &self.scene.polygons {
+            points[p.object].extend(p.positions());
+        }
+        points
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| !v.is_empty())
+            .filter_map(|(object, v)| {
+                let centre = v.iter().copied().sum::<DVec3>() / v.len() as f64;
+                let radius = v.iter().map(|p| p.distance(centre)).fold(0.0, f64::max);
+                let eye = view.to_eye(centre);
+                (eye.z - radius > view.near).then(|| Footprint {
+                    object: object as u32,
+                    centre: view.project(eye),
+                    radius: view.focal * radius / eye.z,
+                })
+            })
+            .collect()
     }
 
     /// Whether a square's corners differ by more than the contrast in a displayed
@@ -373,6 +428,26 @@ impl<'a> Whitted<'a> {
             });
         (high - low).max_element() as f64 > self.settings.contrast
     }
+}
+
+/// What decides a split besides the corners' contrast.
+struct Guard<'a> {
+    footprints: &'a [Footprint],
+    exposure: f32,
+}
+
+/// Whether an object smaller than `square` on the screen, whose bounding sphere's
+/// disc overlaps it, was met by none of its corners' rays.
+fn missed_small_object(square: &Square, c: &[Traced; 4], guard: &Guard) -> bool {
+    guard.footprints.iter().any(|f| {
+        let (x, y) = f.centre;
+        2.0 * f.radius < square.size
+            && x + f.radius > square.x
+            && x - f.radius < square.x + square.size
+            && y + f.radius > square.y
+            && y - f.radius < square.y + square.size
+            && c.iter().all(|t| t.object != Some(f.object))
+    })
 }
 
 #[derive(Clone, Copy, Debug)]
