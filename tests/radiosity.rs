@@ -1161,3 +1161,87 @@ fn shooting_in_a_box_of_unequal_patches_keeps_its_power_and_reaches_its_own_fixe
     let without = total(&state.displayed(&mesh, false));
     assert!(relative(without, converged) < 1e-6);
 }
+
+/// `max_steps` is the number of shots taken, no more: stopped by it, shooting has
+/// taken exactly that many steps, each observed once, and it can be resumed.
+#[test]
+fn shooting_stops_after_exactly_max_steps() {
+    let scene = closed_cube(0.5, [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    let mesh = Mesh::build(&scene, Division::Count(2), Division::Count(2)).unwrap();
+    let estimator = Estimator::new(FormFactorMethod::Hemicube, 32, &scene);
+    let mut state = Shooting::start(&mesh);
+    let mut observed = 0;
+    let stop = |max_steps| Stop {
+        unshot: 0.0,
+        max_steps,
+    };
+    state.run(&mesh, &estimator, stop(5), &mut |_| observed += 1);
+    assert_eq!((state.steps, observed), (5, 5));
+    state.run(&mesh, &estimator, stop(7), &mut |_| observed += 1);
+    assert_eq!((state.steps, observed), (7, 7));
+}
+
+/// Gathering keeps each element's direct part, ρ Σ_j F_ej E_j over the emitters, for
+/// a second pass that draws the direct light itself: in a cube of reflectance 0.5
+/// lit by its top face (radiance 1, radiosity π), every element's direct part is
+/// 0.5 π F with F Lambert's point-to-polygon factor from its centre to the top face
+/// (the hemi-cube's estimate at 256: within 1%).
+#[test]
+fn gathering_keeps_the_direct_part_of_each_element() {
+    let scene = closed_cube(0.5, [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    let mut s = settings(Solver::Gathering, FormFactorMethod::Hemicube, 2);
+    s.resolution = 256;
+    let solution = solve(&scene, &s, &mut |_, _| {}).unwrap();
+    let direct = solution
+        .direct
+        .as_ref()
+        .expect("gathering keeps the direct part");
+    let top: Vec<DVec3> = closed_box_faces(DVec3::ONE)[0].clone();
+    let mut lit = 0;
+    for (e, d) in solution.mesh.elements.iter().zip(direct) {
+        let normal = solution.mesh.patches[e.patch].normal;
+        // The lamp's own elements get nothing from it (Lambert's formula is not
+        // meant for points in the polygon's plane).
+        let on_lamp = (e.centre.y - 1.0).abs() < 1e-12;
+        let expected = if on_lamp {
+            0.0
+        } else {
+            0.5 * PI * form_factor(e.centre, normal, &top)
+        };
+        let found = d.x as f64;
+        assert!(
+            (found - expected).abs() <= 0.01 * expected + 1e-9,
+            "element at {}: {found} against {expected}",
+            e.centre
+        );
+        lit += usize::from(expected > 0.0);
+    }
+    assert_eq!(lit, 20, "the five faces below the lamp, four elements each");
+}
+
+/// Counted on the disc, the Nusselt analog hands every cell inside it to exactly one
+/// wall of a closed box: from a point of its floor the factors sum to 1 to
+/// rounding, at any resolution (each is cells over cells inside the disc). (The
+/// point is chosen so that no cell's ray runs exactly into an edge of the box: such
+/// a ray meets neither wall and its cell is lost, 1 in 37 from the middle of the
+/// floor at resolution 7.)
+#[test]
+fn the_nusselt_counts_from_inside_a_closed_box_sum_to_one() {
+    use lumiere::internals::radiosity::nusselt::Nusselt;
+    let scene = closed_cube(0.5, [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    let mesh = Mesh::build(&scene, Division::Whole, Division::Whole).unwrap();
+    let receivers = Receivers::patches(&mesh);
+    let floor = (0..mesh.patches.len())
+        .find(|&p| mesh.patches[p].normal == DVec3::Y)
+        .unwrap();
+    for resolution in [7, 32, 101] {
+        let factors = Nusselt { resolution }.factors(
+            DVec3::new(0.3719, 0.0, 0.6133),
+            DVec3::Y,
+            &receivers,
+            &|r| r == floor,
+        );
+        let sum: f64 = factors.iter().sum();
+        assert!((sum - 1.0).abs() < 1e-12, "resolution {resolution}: {sum}");
+    }
+}
