@@ -974,3 +974,38 @@ fn light_reaching_a_translucent_panel_from_behind_by_a_mirror_or_a_pane_is_the_h
         );
     }
 }
+
+/// The depth limit counts the specular surfaces a second-pass ray goes through:
+/// behind two panes a glowing wall is seen (τ₁ τ₂ of its radiance) at depth 2 and
+/// not at depth 1, where the ray stops at the second pane (which has no diffuse
+/// part of its own: black).
+#[test]
+fn the_second_pass_goes_through_as_many_panes_as_its_depth() {
+    let centre = |depth: u32| {
+        let mut text = format!(
+            "{CAMERA}[global]\nmethod = \"rushmeier-torrance\"\ndepth = {depth}\n\n[radiosity]\nsolver = \"gathering\"\n\n[materials.first]\ntransmittance = [0.8, 0.8, 0.8]\n\n[materials.second]\ntransmittance = [0.5, 0.5, 0.5]\n\n[materials.glow]\nemission = [1.0, 1.0, 1.0]\n\n"
+        );
+        for (name, z) in [("first", 0.0), ("second", 1.0)] {
+            text += &polygon(
+                name,
+                name,
+                rectangle(DVec3::new(-2.0, -2.0, z), DVec3::new(3.0, 3.0, z)),
+                -DVec3::Z,
+            );
+        }
+        text += &polygon(
+            "wall",
+            "glow",
+            rectangle(DVec3::new(-2.0, -2.0, 2.0), DVec3::new(3.0, 3.0, 2.0)),
+            -DVec3::Z,
+        );
+        render(&scene_from_text(&text, &[])).unwrap().pixels[8 * 16 + 8]
+    };
+    let (one, two) = (centre(1), centre(2));
+    assert_eq!(one, glam::Vec3::ZERO, "depth 1 shows {one}");
+    let expected = 0.8 * 0.5 * 1.0;
+    assert!(
+        (two.x - expected).abs() <= 1e-5,
+        "depth 2 shows {two}, τ₁ τ₂ L = {expected}"
+    );
+}

@@ -1343,3 +1343,41 @@ fn a_small_sphere_between_the_corners_is_found_by_its_bounding_sphere() {
         assert_eq!(pixel(i, j), Vec3::ZERO, "pixel ({i}, {j})");
     }
 }
+
+/// The depth limit counts reflections: between two parallel glowing mirrors
+/// (emission 1, k_s = 0.5) the eye ray sees 1 + 0.5 + … + 0.5^D at depth D, every
+/// reflected ray met by the other mirror.
+#[test]
+fn between_two_glowing_mirrors_the_depth_limit_counts_the_reflections() {
+    let mut text = camera([0.0, 0.0, 5.0], [0.0, 0.0, 0.0], 20.0, 8, 8);
+    text += "[global]\nmethod = \"ray-tracing\"\n[materials.glowing_mirror]\nemission = [1.0, 1.0, 1.0]\nmirror = [0.5, 0.5, 0.5]\n";
+    for (name, order) in [
+        (
+            "near",
+            "[-9.0, -9.0, 0.0], [9.0, -9.0, 0.0], [9.0, 9.0, 0.0], [-9.0, 9.0, 0.0]",
+        ),
+        (
+            "far",
+            "[-9.0, -9.0, 10.0], [-9.0, 9.0, 10.0], [9.0, 9.0, 10.0], [9.0, -9.0, 10.0]",
+        ),
+    ] {
+        text += &format!(
+            "[[objects]]\nshape = \"polygon\"\nname = \"{name}\"\nmaterial = \"glowing_mirror\"\nvertices = [{order}]\n"
+        );
+    }
+    let scene = scene_from_text(&text, &[]);
+    let view = View::new(&scene.camera, 8, 8);
+    let traced = TracedScene::new(&scene, true);
+    for depth in 0..5 {
+        let settings = global(&format!("depth = {depth}\nthreshold = 0.0"));
+        let tracer = Whitted::new(&scene, &traced, &settings, None);
+        let seen = tracer.through(&view, 4.5, 4.5, 0);
+        let expected: f64 = (0..=depth).map(|i| 0.5f64.powi(i)).sum();
+        assert!(
+            (seen.radiance.x as f64 - expected).abs() < 1e-6,
+            "depth {depth}: {} against {expected}",
+            seen.radiance
+        );
+        assert_eq!(seen.rays, depth as u32 + 1, "depth {depth}");
+    }
+}
