@@ -1381,3 +1381,50 @@ fn between_two_glowing_mirrors_the_depth_limit_counts_the_reflections() {
         assert_eq!(seen.rays, depth as u32 + 1, "depth {depth}");
     }
 }
+
+/// Textures where rays land: a quad under a 2 × 2 checkerboard, seen slanting, shows
+/// the same check at every pixel centre to the ray tracer as to the scan-line
+/// renderer (their uv conventions agree; a v flipped at ray hits swaps every check).
+#[test]
+fn textures_at_ray_hits_follow_the_scan_line_renderers_uv() {
+    let text = |method: &str| {
+        format!(
+            "{}{method}[textures.check]\nprocedural = \"checkerboard\"\ncells = 2\ncolors = [[1.0, 1.0, 1.0], [0.1, 0.1, 0.1]]\nfilter = \"nearest\"\n\
+             [materials.card]\ndiffuse = [0.8, 0.8, 0.8]\ndiffuse_texture = \"check\"\n\
+             [[lights]]\ntype = \"distant\"\ndirection = [0.0, -1.0, -1.0]\nirradiance = [1.0, 1.0, 1.0]\n\
+             [[objects]]\nshape = \"quad\"\nname = \"card\"\nmaterial = \"card\"\n\
+             transform = [{{ scale = 3.0 }}, {{ rotate = {{ axis = [0.0, 1.0, 0.0], degrees = 30.0 }} }}]\n",
+            camera([0.3, 2.5, 2.0], [0.0, 0.0, 0.0], 40.0, 24, 24)
+        )
+    };
+    let scene = scene_from_text(&text(""), &[]);
+    let scan = lumiere::render(&scene).unwrap();
+    let traced_scene = scene_from_text(&text("[global]\nmethod = \"ray-tracing\"\n"), &[]);
+    let view = View::new(&traced_scene.camera, 24, 24);
+    let traced = TracedScene::new(&traced_scene, true);
+    let settings = global("depth = 1");
+    let tracer = Whitted::new(&traced_scene, &traced, &settings, None);
+    let (mut bright, mut dark) = (0, 0);
+    for j in 0..24u32 {
+        for i in 0..24u32 {
+            let a = scan.pixels[(j * 24 + i) as usize].x;
+            let b = tracer
+                .through(&view, i as f64 + 0.5, j as f64 + 0.5, 0)
+                .radiance
+                .x;
+            // Each check's colour, where the scan-line renderer shows one (not on
+            // the quad's edge or the background).
+            if a > 0.002 {
+                assert!(
+                    (a - b).abs() <= 0.02 * a,
+                    "pixel ({i}, {j}): {b} traced, {a} scan-line"
+                );
+                if a > 0.05 { bright += 1 } else { dark += 1 }
+            }
+        }
+    }
+    assert!(
+        bright > 40 && dark > 40,
+        "{bright} bright, {dark} dark pixels"
+    );
+}
