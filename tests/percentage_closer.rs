@@ -655,3 +655,52 @@ fn scene_keys() {
         assert!(!line.contains('\n'), "{set}: {line}");
     }
 }
+
+/// Williams's post-pass: the shadow is applied to the finished image, each light's
+/// contribution keeping a quarter where its map finds shadow (the documented
+/// 25%, highlights included). On the point-lit shadow-map entry (one light, nothing
+/// emitting in view of the shadowed floor), a sample the map calls shadowed is a
+/// quarter of the unshadowed render's, a lit one all of it.
+#[test]
+fn the_post_pass_keeps_a_quarter_of_the_light_in_shadow() {
+    let sets = |extra: &[&str]| -> Vec<String> {
+        ["camera.width=64", "camera.height=48"]
+            .iter()
+            .chain(extra)
+            .map(|s| s.to_string())
+            .collect()
+    };
+    let load = |extra: &[&str]| load_scene("shadow-map", &sets(extra)).unwrap();
+    let wanted = ["visibility-0".to_string()];
+    let frame = lumiere::Renderer::new(load(&[]))
+        .render_with_buffers(&wanted)
+        .unwrap();
+    let lumiere::BufferData::Values { data, channels } =
+        &frame.buffer("visibility-0").unwrap().data
+    else {
+        panic!("values")
+    };
+    let post = lumiere::render(&load(&["shadows.post_pass=true"])).unwrap();
+    let open = lumiere::render(&load(&["shadows.method=\"none\""])).unwrap();
+    let (mut shadowed, mut lit) = (0, 0);
+    for (k, (p, o)) in post.pixels.iter().zip(&open.pixels).enumerate() {
+        let v = data[k * channels];
+        let expected = if v == 0.0 {
+            shadowed += 1;
+            *o * 0.25
+        } else if v == 1.0 {
+            lit += 1;
+            *o
+        } else {
+            continue;
+        };
+        assert!(
+            (*p - expected).abs().max_element() <= 1e-6 * expected.max_element().max(1e-3),
+            "sample {k}: {p} with the post-pass, {expected} expected"
+        );
+    }
+    assert!(
+        shadowed > 100 && lit > 100,
+        "{shadowed} shadowed, {lit} lit"
+    );
+}

@@ -798,3 +798,41 @@ fn the_box_mapping_reproduces_the_boxs_own_coordinates() {
         }
     }
 }
+
+/// At a pole, where θ is undefined, a vertex takes the mean u of the polygon's other
+/// vertices: between their least and greatest u, never outside (the course's pinching).
+#[test]
+fn a_pole_vertex_takes_the_mean_u_of_the_others() {
+    use lumiere::internals::texture::mapping::fix_seam;
+    for (others, expected) in [
+        (vec![0.5, 0.55], 0.525),
+        (vec![0.2, 0.3, 0.4], 0.3),
+        // Across the seam: 0.95 and 0.05 are a tenth of a turn apart.
+        (vec![0.95, 0.05], 1.0),
+    ] {
+        let mut uvs: Vec<DVec2> = std::iter::once(DVec2::new(0.0, 1.0))
+            .chain(others.iter().map(|&u| DVec2::new(u, 0.9)))
+            .collect();
+        let mut on_axis = vec![false; uvs.len()];
+        on_axis[0] = true;
+        fix_seam(&mut uvs, &on_axis, 1.0);
+        assert!(
+            (uvs[0].x - expected).abs() < 1e-12,
+            "others {others:?}: the pole's u {}, expected {expected}",
+            uvs[0].x
+        );
+    }
+}
+
+/// The procedural sky brightens from the zenith towards the horizon (its documented
+/// gradient): straight up it is the deep blue, just above the horizon nearly white.
+#[test]
+fn the_sky_is_blue_overhead_and_pale_at_the_horizon() {
+    use lumiere::internals::texture::environment::sky::ProceduralEnvironment;
+    // Away from the sun (up and to the left of −z): towards +x.
+    let up = ProceduralEnvironment::Sky.radiance(DVec3::Y);
+    let low = ProceduralEnvironment::Sky.radiance(DVec3::new(1.0, 1e-4, 0.0));
+    assert!(up.z > 2.0 * up.x, "overhead {up}: blue");
+    assert!(low.min_element() > 0.8, "at the horizon {low}: pale");
+    assert!(low.x > 3.0 * up.x, "{low} against {up}");
+}
