@@ -240,3 +240,22 @@ fn latitude_longitude_follows_the_course_formula() {
         }
     }
 }
+
+/// A footprint's step in the latitude-longitude map is the longitude difference the
+/// short way round: a hundredth of a turn either way, in the middle of the map or
+/// across its seam, is ±0.01 in u (never 0.99).
+#[test]
+fn latitude_longitude_steps_go_the_short_way_round() {
+    use glam::DVec2;
+    use lumiere::internals::texture::environment::lat_long::{direction, uv_step};
+    for (from, to) in [(0.50, 0.49), (0.50, 0.51), (0.995, 0.005), (0.005, 0.995)] {
+        let d = direction(DVec2::new(from, 0.4));
+        let offset = direction(DVec2::new(to, 0.4)) - d;
+        let step = uv_step(d, offset);
+        let expected = (to - from + 0.5f64).rem_euclid(1.0) - 0.5;
+        assert!(
+            (step.x - expected).abs() < 1e-9 && step.y.abs() < 1e-9,
+            "from u = {from} to {to}: {step}, expected {expected}"
+        );
+    }
+}
