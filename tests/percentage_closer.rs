@@ -704,3 +704,23 @@ fn the_post_pass_keeps_a_quarter_of_the_light_in_shadow() {
         "{shadowed} shadowed, {lit} lit"
     );
 }
+
+/// Williams's test reads the texel the point falls in: texel (i, j) covers
+/// [i, i + 1] × [j, j + 1] of the map, so a point at (2.7, 1.2) reads texel (2, 1)
+/// (not the nearest texel centre, (3, 1)); beyond the border, the border's.
+#[test]
+fn a_map_position_reads_the_texel_it_falls_in() {
+    let depth = vec![0.0f32; 16];
+    let image = DepthImage {
+        size: 4,
+        depth: &depth,
+    };
+    for (at, expected) in [
+        ((2.7, 1.2), (2, 1)),
+        ((0.0, 3.99), (0, 3)),
+        ((3.5, 0.5), (3, 0)),
+        ((-0.5, 4.5), (0, 3)),
+    ] {
+        assert_eq!(image.texel(DVec2::new(at.0, at.1)), expected, "at {at:?}");
+    }
+}

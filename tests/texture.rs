@@ -836,3 +836,54 @@ fn the_sky_is_blue_overhead_and_pale_at_the_horizon() {
     assert!(low.min_element() > 0.8, "at the horizon {low}: pale");
     assert!(low.x > 3.0 * up.x, "{low} against {up}");
 }
+
+/// An 8-bit texel is its byte over 255, decoded from sRGB: 0 is black, 255 is
+/// exactly 1, and 128 the sRGB curve's value at 128/255 (the standard's piecewise
+/// formula, written out here).
+#[test]
+fn eight_bit_texels_are_their_bytes_over_255_decoded_from_srgb() {
+    let image = image::RgbImage::from_fn(3, 1, |x, _| image::Rgb([[0u8, 128, 255][x as usize]; 3]));
+    let mut bytes = Vec::new();
+    image
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .unwrap();
+    let texels = Texels::decode(&bytes).unwrap();
+    let c = 128.0f64 / 255.0;
+    let decoded = ((c + 0.055) / 1.055).powf(2.4);
+    let expected = [0.0, decoded, 1.0];
+    for (i, e) in expected.iter().enumerate() {
+        let got = texels.at(i as i64, 0, Wrap::Clamp);
+        assert!(
+            (got.x as f64 - e).abs() < 1e-6,
+            "byte {}: {got}, expected {e}",
+            [0, 128, 255][i]
+        );
+    }
+}
+
+/// The procedural sky's sun glows as a cos⁶⁴ lobe (its documented shape): at the
+/// sun's elevation, a direction turned θ away in azimuth has the same sky gradient,
+/// and exceeds a direction far from the sun by (1.6, 1.4, 1.0) cos⁶⁴ of its angle to
+/// the sun.
+#[test]
+fn the_suns_glow_is_a_cos64_lobe() {
+    use lumiere::internals::texture::environment::sky::ProceduralEnvironment;
+    let sun = DVec3::new(-0.45, 0.6, -0.66).normalize();
+    let turn = |degrees: f64| {
+        let (s, c) = degrees.to_radians().sin_cos();
+        DVec3::new(sun.x * c - sun.z * s, sun.y, sun.x * s + sun.z * c)
+    };
+    let far = ProceduralEnvironment::Sky.radiance(turn(180.0));
+    for degrees in [0.0, 5.0, 10.0, 15.0] {
+        let d = turn(degrees);
+        let glow = ProceduralEnvironment::Sky.radiance(d) - far;
+        let expected = 1.6 * d.dot(sun).powi(64);
+        assert!(
+            (glow.x as f64 - expected).abs() < 1e-5,
+            "{degrees}° from the sun: {glow}, expected red {expected}"
+        );
+    }
+}

@@ -2,7 +2,7 @@
 //!
 //! - `sky`: a clear sky over a checkered ground plane, the classic surroundings of a
 //!   chrome ball. The sky brightens from the zenith to the horizon and around a sun
-//!   (up and to the left of a camera looking down −z); the ground is a plane one unit
+//!   (up and to the left of a camera looking down −z; a cos⁶⁴ glow); the ground is a plane one unit
 //!   below the centre, checkered in unit squares, fading to a haze at the horizon so
 //!   that the map carries no detail finer than its texels there.
 //! - `directions`: each direction's own unit vector as a colour, (d + 1)/2, so that a
