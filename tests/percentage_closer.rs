@@ -724,3 +724,36 @@ fn a_map_position_reads_the_texel_it_falls_in() {
         assert_eq!(image.texel(DVec2::new(at.0, at.1)), expected, "at {at:?}");
     }
 }
+
+/// Each cube face is a 90° frustum on a resolution² grid: its axis lands on the
+/// image's centre and its edges (45° off the axis) on the image's borders.
+#[test]
+fn each_cube_face_spans_its_image_exactly() {
+    use lumiere::internals::shadow::cube_faces::{FACES, face_view};
+    let scene = load_scene("shadow-map", &[]).unwrap();
+    let light = DVec3::new(0.3, 2.0, -0.4);
+    for resolution in [16, 64, 512] {
+        let half = resolution as f64 / 2.0;
+        for &(axis, up) in &FACES {
+            let view = face_view(&scene, light, (axis, up), resolution);
+            let at = |d: DVec3| view.project(view.to_eye(light + d));
+            let (x, y) = at(axis);
+            assert!(
+                (x - half).abs() < 1e-9 && (y - half).abs() < 1e-9,
+                "axis {axis}"
+            );
+            for (d, edge) in [(up, 0.0), (-up, 2.0 * half)] {
+                let (x, y) = at(axis + d);
+                assert!(
+                    (y - edge).abs() < 1e-9 && (x - half).abs() < 1e-9,
+                    "{axis} {d}"
+                );
+            }
+            let (x, _) = at(axis + axis.cross(up));
+            assert!(
+                ((x - half).abs() - half).abs() < 1e-9,
+                "side of {axis}: {x}"
+            );
+        }
+    }
+}

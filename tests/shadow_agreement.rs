@@ -458,6 +458,19 @@ mod shadow_polygon_areas {
         let light = glam::DVec3::new(0.0, light_height, 0.0);
         let receivers = receiver_shadows(&scene, light);
         let ground = receivers.iter().find(|r| r.object == "ground").unwrap();
+        // Each report names its own polygon: the one of its object, of its area (the
+        // ground 7 x 7, the occluder s x s).
+        for r in &receivers {
+            let polygon = &scene.polygons[r.polygon];
+            assert_eq!(scene.objects[polygon.object].name, r.object);
+            let side = if r.object == "ground" { 7.0 } else { s };
+            assert!(
+                (r.area - side * side).abs() < 1e-9,
+                "{}: {}",
+                r.object,
+                r.area
+            );
+        }
         let side = s * light_height / (light_height - h);
         let expected = side * side;
         assert!(

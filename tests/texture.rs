@@ -887,3 +887,58 @@ fn the_suns_glow_is_a_cos64_lobe() {
         );
     }
 }
+
+/// Bump height is the displacement's scale: a floor 2 × 2 (∂P/∂u and ∂P/∂v of
+/// length 2) bumped by h F(u, v) with F a value noise is shaded as the displaced
+/// surface y = h F, whose slopes are h F_u / 2 and h F_v / 2, so under a light
+/// straight above each sample's radiance is the flat floor's times
+/// 1/√(1 + (h F_u/2)² + (h F_v/2)²) (F's gradient from the texture).
+#[test]
+fn the_bump_height_scales_the_displacement() {
+    let h = 0.05;
+    let text = format!(
+        "[camera]\neye = [0.0, 3.0, 0.001]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 30.0\nwidth = 48\nheight = 48\n\
+         [render]\nshading = \"phong\"\n\
+         [textures.bumps]\nprocedural = \"noise\"\ncells = 4\nseed = 5\n\
+         [materials.floor]\ndiffuse = [0.5, 0.5, 0.5]\nbump_texture = \"bumps\"\nbump_height = {h}\n\
+         [[lights]]\ntype = \"distant\"\ndirection = [0.0, -1.0, 0.0]\nirradiance = [1.0, 1.0, 1.0]\n\
+         [[objects]]\nshape = \"quad\"\nname = \"floor\"\nmaterial = \"floor\"\ntransform = [{{ scale = 2.0 }}]\n"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("bumps.toml");
+    std::fs::write(&path, text).unwrap();
+    let scene = load_scene(path.to_str().unwrap(), &[]).unwrap();
+    let frame = lumiere::Renderer::new(scene.clone())
+        .render_with_buffers(&["uv".to_string(), "polygon".to_string()])
+        .unwrap();
+    let lumiere::BufferData::Values { data: uv, channels } = &frame.buffer("uv").unwrap().data
+    else {
+        panic!("uv values")
+    };
+    let lumiere::BufferData::Ids(ids) = &frame.buffer("polygon").unwrap().data else {
+        panic!("ids")
+    };
+    let image = render(&scene).unwrap();
+    let flat = 0.5 / PI as f32;
+    let (mut checked, mut tilted) = (0, 0);
+    for (k, pixel) in image.pixels.iter().enumerate() {
+        if ids[k] == u32::MAX {
+            continue;
+        }
+        let at = DVec2::new(uv[k * channels] as f64, uv[k * channels + 1] as f64);
+        let (_, g) = scene.textures[0].height(at);
+        let slope = g * h / 2.0;
+        let expected = flat as f64 / (1.0 + slope.length_squared()).sqrt();
+        assert!(
+            (pixel.x as f64 - expected).abs() < 1e-5,
+            "sample {k} at uv {at}: {} against {expected}",
+            pixel.x
+        );
+        checked += 1;
+        tilted += usize::from(expected < 0.999 * flat as f64);
+    }
+    assert!(
+        checked > 1000 && tilted > 500,
+        "{checked} samples, {tilted} tilted"
+    );
+}
