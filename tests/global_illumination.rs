@@ -508,11 +508,7 @@ fn two_rooms_by_hand(tau: f64) -> Vec<f64> {
 
 fn two_rooms_by_lumiere(tau: f64) -> Vec<f64> {
     let scene = two_rooms(tau);
-    let settings = scene.radiosity.clone().unwrap();
-    let mesh = lumiere::internals::radiosity::mesh(&scene, &settings).unwrap();
-    let estimator = Estimator::new(FormFactorMethod::Hemicube, settings.resolution, &scene);
-    let extension = extension_of(&scene);
-    let solved = extended::gather(&scene, &mesh, &estimator, extension, 1e-9, u64::MAX).unwrap();
+    let (mesh, solved) = solved_extended(&scene);
     let names = [
         "a ceiling",
         "a floor",
@@ -546,6 +542,24 @@ fn two_rooms_by_lumiere(tau: f64) -> Vec<f64> {
         b.push(of(&|n, normal| n == "panel" && normal.dot(facing) > 0.99));
     }
     b
+}
+
+/// The scene's mesh and its first pass solved by gathering with hemi-cubes (the
+/// scene's resolution), to 1e-9.
+fn solved_extended(scene: &Scene) -> (Mesh, lumiere::internals::radiosity::gathering::Gathered) {
+    let settings = scene.radiosity.clone().unwrap();
+    let mesh = lumiere::internals::radiosity::mesh(scene, &settings).unwrap();
+    let estimator = Estimator::new(FormFactorMethod::Hemicube, settings.resolution, scene);
+    let solved = extended::gather(
+        scene,
+        &mesh,
+        &estimator,
+        extension_of(scene),
+        1e-9,
+        u64::MAX,
+    )
+    .unwrap();
+    (mesh, solved)
 }
 
 /// The scene's first-pass extension, or Rushmeier & Torrance's with nothing to
@@ -735,18 +749,7 @@ fn the_reflected_spot_is_lit_by_the_mirrored_lamp_times_the_mirror_reflectance()
             -DVec3::X,
         );
         let scene = scene_from_text(&text, &[]);
-        let settings = scene.radiosity.clone().unwrap();
-        let mesh = lumiere::internals::radiosity::mesh(&scene, &settings).unwrap();
-        let estimator = Estimator::new(FormFactorMethod::Hemicube, settings.resolution, &scene);
-        let solved = extended::gather(
-            &scene,
-            &mesh,
-            &estimator,
-            extension_of(&scene),
-            1e-9,
-            u64::MAX,
-        )
-        .unwrap();
+        let (mesh, solved) = solved_extended(&scene);
         let direct = mechanisms.contains("diffuse-diffuse");
         let mut checked = 0;
         for (e, element) in mesh.elements.iter().enumerate() {
@@ -946,18 +949,7 @@ fn light_reaching_a_translucent_panel_from_behind_by_a_mirror_or_a_pane_is_the_h
             DVec3::Z,
         );
         let scene = scene_from_text(&text, &[]);
-        let settings = scene.radiosity.clone().unwrap();
-        let mesh = lumiere::internals::radiosity::mesh(&scene, &settings).unwrap();
-        let estimator = Estimator::new(FormFactorMethod::Hemicube, settings.resolution, &scene);
-        let solved = extended::gather(
-            &scene,
-            &mesh,
-            &estimator,
-            extension_of(&scene),
-            1e-9,
-            u64::MAX,
-        )
-        .unwrap();
+        let (mesh, solved) = solved_extended(&scene);
         let (mut sum, mut area) = (0.0, 0.0);
         for (p, patch) in mesh.patches.iter().enumerate() {
             if scene.objects[scene.polygons[patch.polygon].object].name == "panel" {
