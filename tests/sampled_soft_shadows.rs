@@ -538,3 +538,56 @@ fn a_near_sphere_and_one_across_the_horizon_give_their_irradiance_share() {
         );
     }
 }
+
+/// The shading variant's weights: each point of the light counts by its own
+/// contribution to the sample, cos θ_sample cos θ_light / d². Two points of a lamp at
+/// height 2, a plate at height 1 over 0.2 < x < 0.8 hiding the right one from part of
+/// the floor: there the visibility is w_left / (w_left + w_right), the weights
+/// written out here.
+#[test]
+fn each_point_counts_by_its_own_contribution() {
+    let text = "[camera]\neye = [0.0, 4.0, 3.0]\nlook_at = [0.3, 0.0, 0.0]\nfov_y = 50.0\nwidth = 64\nheight = 64\n\
+        [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\
+        [[objects]]\nshape = \"polygon\"\nname = \"floor\"\nmaterial = \"grey\"\nvertices = [[-3.0, 0.0, -3.0], [-3.0, 0.0, 3.0], [3.0, 0.0, 3.0], [3.0, 0.0, -3.0]]\n\
+        [[objects]]\nshape = \"polygon\"\nname = \"plate\"\nmaterial = \"grey\"\nvertices = [[0.2, 1.0, -3.0], [0.8, 1.0, -3.0], [0.8, 1.0, 3.0], [0.2, 1.0, 3.0]]\n\
+        [[objects]]\nshape = \"polygon\"\nname = \"lamp\"\nmaterial = \"lamp\"\nvertices = [[-1.0, 2.0, -0.5], [1.0, 2.0, -0.5], [1.0, 2.0, 0.5], [-1.0, 2.0, 0.5]]\n";
+    let scene = common::scene_from_text(text, &[]);
+    let (view, surface) = visible_surface(&scene);
+    let points = [DVec3::new(-0.5, 2.0, 0.0), DVec3::new(0.5, 2.0, 0.0)];
+    let soft = SoftShadowVolumes::at_points(&scene, &scene.lights[0], &points);
+    let band = soft.frame(&scene, &view).band(&surface);
+    let LightVisibility::Fraction(f) = &band.visibility else {
+        panic!("a fraction");
+    };
+    // Whether the plate lies on the segment from x to p (it is the plane y = 1).
+    let hidden = |x: DVec3, p: DVec3| {
+        let hit = x + (p - x) * ((1.0 - x.y) / (p.y - x.y));
+        (0.2..=0.8).contains(&hit.x) && hit.z.abs() <= 3.0
+    };
+    let weight = |x: DVec3, p: DVec3| {
+        let d = p - x;
+        d.y * d.y / d.length_squared().powi(2)
+    };
+    let mut checked = 0;
+    for (k, s) in surface.samples.iter().enumerate() {
+        if s.is_empty() || s.position.y.abs() > 1e-9 {
+            continue; // the floor's samples only
+        }
+        let x = s.position;
+        let (left, right) = (hidden(x, points[0]), hidden(x, points[1]));
+        if left || !right {
+            continue;
+        }
+        let expected = weight(x, points[0]) / (weight(x, points[0]) + weight(x, points[1]));
+        assert!(
+            (f[k] as f64 - expected).abs() < 1e-5,
+            "at {x}: {}, expected {expected}",
+            f[k]
+        );
+        checked += 1;
+    }
+    assert!(
+        checked > 50,
+        "{checked} samples with the right point hidden"
+    );
+}
