@@ -2,7 +2,7 @@
 //! thresholds a regression test allows.
 
 use anyhow::{Context, Result, bail};
-use lumiere::{Comparison, compare_images, difference_image, write_image};
+use lumiere::{Comparison, FuzzyMatch, compare_images, difference_image, fuzzy_match, write_image};
 use std::path::PathBuf;
 
 /// Compare two images (PNG, PFM or EXR): RMSE, PSNR, largest channel difference and the
@@ -10,6 +10,11 @@ use std::path::PathBuf;
 ///
 /// With thresholds (--max-rmse, --max-difference, --max-differing) the figures are
 /// printed as usual, then, if any is exceeded, one line `error: …` naming it.
+///
+/// Fuzzy matching, as Skia Gold's (--max-differing-pixels, with --pixel-delta and
+/// --ignore-border): the images match if, outside the border, at most N pixels differ
+/// at all and none of them by more than D in the sum of its channels' differences
+/// (1/255 steps), so an edge moved by a pixel passes and a moved shadow does not.
 /// Exit status: 0 within the thresholds (or none given), 1 beyond them, 2 for bad
 /// input (an unreadable image, images of different sizes, a bad option).
 #[derive(clap::Args, Debug)]
@@ -40,6 +45,23 @@ pub struct Args {
     /// than 2/255.
     #[arg(long, value_name = "FRACTION")]
     max_differing: Option<f64>,
+    /// Fuzzy matching (Skia Gold's): fail (exit 1) if more than N pixels differ at all
+    /// (outside the --ignore-border).
+    #[arg(long, value_name = "N")]
+    max_differing_pixels: Option<u64>,
+    /// Fuzzy matching: fail (exit 1) if a pixel's channel differences, in 1/255
+    /// steps, sum to more than D (0 to 765). Needs --max-differing-pixels.
+    #[arg(long, value_name = "D", requires = "max_differing_pixels", value_parser = clap::value_parser!(u32).range(0..=765))]
+    pixel_delta: Option<u32>,
+    /// Fuzzy matching: leave out the K pixels along each edge. Needs
+    /// --max-differing-pixels.
+    #[arg(
+        long,
+        value_name = "K",
+        default_value_t = 0,
+        requires = "max_differing_pixels"
+    )]
+    ignore_border: u32,
     /// The memory the comparison may take, counted from the images' headers before
     /// either is decoded (as render.max_memory_mb is for a render).
     #[arg(long, value_name = "MB", default_value_t = 4096, value_parser = clap::value_parser!(u64).range(1..=1 << 20))]
@@ -152,6 +174,10 @@ pub fn run(args: Args) -> Result<()> {
     }
     let (a, b) = read_within_budget(&args)?;
     let c = compare_images(&a, &b, args.exposure)?;
+    let fuzzy = match args.max_differing_pixels {
+        Some(_) => Some(fuzzy_match(&a, &b, args.exposure, args.ignore_border)?),
+        None => None,
+    };
     if let Some(path) = &args.diff {
         write_image(
             &difference_image(&a, &b, args.exposure, args.gain),
@@ -159,9 +185,9 @@ pub fn run(args: Args) -> Result<()> {
             1.0,
         )?;
     }
-    let printed = print(&c, args.json);
+    let printed = print(&c, fuzzy.as_ref(), args.json);
     // The verdict stands even when the reader of the figures has gone (`| head -1`).
-    let exceeded = exceeded(&args, &c);
+    let exceeded = exceeded(&args, &c, fuzzy.as_ref());
     if !exceeded.is_empty() {
         return Err(BeyondThresholds(format!(
             "{} and {} differ beyond the threshold{}: {}",
@@ -176,9 +202,13 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 /// The figures, as text or JSON, on standard output.
-fn print(c: &Comparison, json: bool) -> Result<()> {
+fn print(c: &Comparison, fuzzy: Option<&FuzzyMatch>, json: bool) -> Result<()> {
     if json {
-        outln!("{}", serde_json::to_string_pretty(c)?)?;
+        let mut value = serde_json::to_value(c)?;
+        if let Some(f) = fuzzy {
+            value["fuzzy"] = serde_json::to_value(f)?;
+        }
+        outln!("{}", serde_json::to_string_pretty(&value)?)?;
     } else {
         outln!("rmse            {:.6}", c.rmse)?;
         outln!("psnr            {:.2} dB", c.psnr)?;
@@ -187,6 +217,14 @@ fn print(c: &Comparison, json: bool) -> Result<()> {
             "differing       {:.4}% of pixels (> 2/255)",
             100.0 * c.differing_share
         )?;
+        if let Some(f) = fuzzy {
+            outln!(
+                "fuzzy           {} pixels differ, largest delta {}/255 (border {})",
+                f.differing_pixels,
+                f.largest_pixel_delta,
+                f.border
+            )?;
+        }
     }
     Ok(())
 }
@@ -198,7 +236,7 @@ pub fn failure_status(error: &anyhow::Error) -> u8 {
 }
 
 /// Each threshold exceeded, with the measured value.
-fn exceeded(args: &Args, c: &Comparison) -> Vec<String> {
+fn exceeded(args: &Args, c: &Comparison, fuzzy: Option<&FuzzyMatch>) -> Vec<String> {
     let mut beyond = Vec::new();
     if let Some(x) = args.max_rmse
         && c.rmse > x
@@ -219,6 +257,22 @@ fn exceeded(args: &Args, c: &Comparison) -> Vec<String> {
         beyond.push(format!(
             "differing {:.6} of pixels > --max-differing {f}",
             c.differing_share
+        ));
+    }
+    if let (Some(n), Some(f)) = (args.max_differing_pixels, fuzzy)
+        && f.differing_pixels > n
+    {
+        beyond.push(format!(
+            "{} pixels differ > --max-differing-pixels {n}",
+            f.differing_pixels
+        ));
+    }
+    if let (Some(d), Some(f)) = (args.pixel_delta, fuzzy)
+        && f.largest_pixel_delta > d
+    {
+        beyond.push(format!(
+            "a pixel's delta {}/255 > --pixel-delta {d}",
+            f.largest_pixel_delta
         ));
     }
     beyond

@@ -50,6 +50,49 @@ pub fn compare(a: &Image, b: &Image, exposure: f32) -> Result<Comparison> {
     })
 }
 
+/// Skia Gold's fuzzy matching figures (Skia's image comparison for its regression
+/// tests: `max_different_pixels`, `pixel_delta_threshold`,
+/// `ignored_border_thickness`): outside a border `border` pixels wide, how many pixels
+/// differ at all on the 8-bit values, and the largest sum of one pixel's channel
+/// differences, in 1/255 steps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct FuzzyMatch {
+    pub differing_pixels: u64,
+    pub largest_pixel_delta: u32,
+    pub border: u32,
+}
+
+/// The fuzzy matching figures of two images of the same size (see `FuzzyMatch`).
+pub fn fuzzy_match(a: &Image, b: &Image, exposure: f32, border: u32) -> Result<FuzzyMatch> {
+    if (a.width, a.height) != (b.width, b.height) {
+        return Err(Error::SizeMismatch {
+            first: (a.width, a.height),
+            second: (b.width, b.height),
+        });
+    }
+    let inside = |i: u32, n: u32| i >= border && i + border < n;
+    let mut m = FuzzyMatch {
+        differing_pixels: 0,
+        largest_pixel_delta: 0,
+        border,
+    };
+    for (k, (p, q)) in a.pixels.iter().zip(&b.pixels).enumerate() {
+        let (x, y) = (k as u32 % a.width, k as u32 / a.width);
+        if !(inside(x, a.width) && inside(y, a.height)) {
+            continue;
+        }
+        let delta: u32 = displayed_difference(*p, *q, exposure)
+            .iter()
+            .map(|&c| c as u32)
+            .sum();
+        if delta > 0 {
+            m.differing_pixels += 1;
+            m.largest_pixel_delta = m.largest_pixel_delta.max(delta);
+        }
+    }
+    Ok(m)
+}
+
 /// |a − b| per channel of the displayed values, magnified `gain` times (linear
 /// values, ready to save as PNG with exposure 1).
 pub fn difference_image(a: &Image, b: &Image, exposure: f32, gain: f32) -> Image {

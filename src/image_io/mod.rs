@@ -12,7 +12,7 @@ mod staged_directory;
 
 pub use animation::Animation;
 pub use buffer::{Buffer, BufferData, NO_ID};
-pub use compare::{Comparison, compare, difference_image};
+pub use compare::{Comparison, FuzzyMatch, compare, difference_image, fuzzy_match};
 pub use staged_directory::StagedDirectory;
 
 use crate::error::{Error, FileOp, Result};
