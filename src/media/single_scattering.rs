@@ -120,25 +120,29 @@ fn sunlit_integral(
         return b - a;
     }
     // Back towards the sun, w = −travel: the face of axis i the light came in by.
-    let lines: Vec<(f64, f64)> = (0..3)
-        .filter(|&i| travel[i] != 0.0)
-        .map(|i| {
-            let w = -travel[i];
-            let face = if w > 0.0 { max[i] } else { min[i] };
-            ((face - eye[i]) / w, -direction[i] / w)
-        })
-        .collect();
-    let mut cuts = vec![a, b];
+    // At most three lines and three crossings: fixed arrays, no allocation per
+    // viewing ray.
+    let (mut lines, mut n) = ([(0.0, 0.0); 3], 0);
+    for i in (0..3).filter(|&i| travel[i] != 0.0) {
+        let w = -travel[i];
+        let face = if w > 0.0 { max[i] } else { min[i] };
+        lines[n] = ((face - eye[i]) / w, -direction[i] / w);
+        n += 1;
+    }
+    let lines = &lines[..n];
+    let (mut cuts, mut m) = ([a, b, 0.0, 0.0, 0.0], 2);
     for (i, &(ai, bi)) in lines.iter().enumerate() {
         for &(aj, bj) in &lines[i + 1..] {
             if bi != bj {
                 let t = (aj - ai) / (bi - bj);
                 if t > a && t < b {
-                    cuts.push(t);
+                    cuts[m] = t;
+                    m += 1;
                 }
             }
         }
     }
+    let cuts = &mut cuts[..m];
     cuts.sort_by(f64::total_cmp);
     let mut total = 0.0;
     for piece in cuts.windows(2) {
