@@ -9,31 +9,6 @@ use lumiere::internals::image_io;
 use std::path::Path;
 use std::process::Command;
 
-/// POV-Ray and Mitsuba, installed by the project's script when missing (once a test
-/// binary: its tests ask from several threads).
-fn peers() {
-    static READY: std::sync::OnceLock<()> = std::sync::OnceLock::new();
-    READY.get_or_init(install_when_missing);
-}
-
-fn install_when_missing() {
-    let ready = Command::new("python3")
-        .args(["-c", "import mitsuba"])
-        .status()
-        .is_ok_and(|s| s.success())
-        && Command::new("sh")
-            .args(["-c", "command -v povray"])
-            .status()
-            .is_ok_and(|s| s.success());
-    if !ready {
-        let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/install-peers.sh");
-        let status = Command::new(&script)
-            .status()
-            .expect("the install script runs");
-        assert!(status.success(), "{} failed", script.display());
-    }
-}
-
 fn lumiere(args: &[&str], dir: &Path) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_lumiere"))
         .args(args)
@@ -91,7 +66,7 @@ fn flip(dir: &Path, reference: &str, test: &str) -> f64 {
     ignore = "needs POV-Ray and Mitsuba 3 (LUMIERE_SKIP_SYSTEM_TESTS)"
 )]
 fn the_exported_cornell_box_renders_in_mitsuba_and_pov_ray_as_in_lumiere() {
-    peers();
+    common::peers::ready();
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let size = ["--width", "128", "--height", "128"];
@@ -138,7 +113,7 @@ fn the_exported_cornell_box_renders_in_mitsuba_and_pov_ray_as_in_lumiere() {
     ignore = "needs POV-Ray and Mitsuba 3 (LUMIERE_SKIP_SYSTEM_TESTS)"
 )]
 fn every_kind_of_light_exports_to_scenes_both_peers_light_where_lumiere_does() {
-    peers();
+    common::peers::ready();
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     // A quad light, a sphere light, a spot (its fog cleared, its cone uniform), a

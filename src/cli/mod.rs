@@ -23,6 +23,7 @@ mod bench_radiosity;
 mod bitmap_text;
 mod buffer_picture;
 mod compare;
+mod compare_checks;
 mod contact_sheet;
 mod envmap;
 mod export;

@@ -12,7 +12,11 @@ mod staged_directory;
 
 pub use animation::Animation;
 pub use buffer::{Buffer, BufferData, NO_ID};
-pub use compare::{Comparison, FuzzyMatch, compare, difference_image, fuzzy_match};
+pub use compare::{
+    Candidate, Comparison, Flip, FlipRange, FuzzyMatch, Moments, StatisticalTest, ToleranceCheck,
+    apply_mask, compare, default_pixels_per_degree, difference_image, edge_mask, flip, fuzzy_match,
+    pixels_per_degree, statistical_test, strip, tolerance_check,
+};
 pub use staged_directory::StagedDirectory;
 
 use crate::error::{Error, FileOp, Result};

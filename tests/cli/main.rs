@@ -1,6 +1,7 @@
 //! The binary as a user meets it: subcommands, and one clear error line (never a
 //! panic, never a half-written file) for every kind of bad input.
 
+mod compare_metrics;
 mod fuzzy_compare;
 mod robustness;
 mod support;

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod flip;
+pub mod peers;
 
 use glam::{DVec2, DVec3};
 use lumiere::internals::raster::{ScreenPolygon, View};

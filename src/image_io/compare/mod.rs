@@ -2,6 +2,18 @@
 //! pixels that differ visibly, on the 8-bit sRGB values both images display as (so
 //! a PNG and a PFM or EXR of the same render compare equal).
 
+mod edges;
+mod flip;
+mod statistics;
+mod strip;
+mod tolerance;
+
+pub use edges::{apply_mask, edge_mask};
+pub use flip::{Flip, FlipRange, default_pixels_per_degree, flip, pixels_per_degree};
+pub use statistics::{Candidate, Moments, StatisticalTest, statistical_test};
+pub use strip::strip;
+pub use tolerance::{ToleranceCheck, tolerance_check};
+
 use super::{Image, srgb_decode, to_srgb8};
 use crate::error::{Error, Result};
 use glam::Vec3;
