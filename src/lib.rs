@@ -50,9 +50,9 @@ pub use glam;
 pub use error::{Error, FileOp, OverBudget, Result, Unsupported};
 pub use image_io::{
     Buffer, BufferData, Candidate, Comparison, Flip, FlipRange, Format as ImageFormat, FuzzyMatch,
-    Image, Moments, NO_ID, StatisticalTest, ToleranceCheck, apply_mask, compare as compare_images,
-    decode as decode_image, default_pixels_per_degree, difference_image, edge_mask,
-    encode as encode_image, flip, fuzzy_match, load as read_image, remove_unfinished,
+    Image, Moments, MomentsSum, NO_ID, StatisticalTest, ToleranceCheck, apply_mask,
+    compare as compare_images, decode as decode_image, default_pixels_per_degree, difference_image,
+    edge_mask, encode as encode_image, flip, fuzzy_match, load as read_image, remove_unfinished,
     save as write_image, statistical_test, strip as comparison_strip, tolerance_check,
     write_atomically,
 };

@@ -22,6 +22,7 @@ mod bench;
 mod bench_radiosity;
 mod bitmap_text;
 mod buffer_picture;
+mod check;
 mod compare;
 mod compare_checks;
 mod contact_sheet;
@@ -31,6 +32,7 @@ mod form_factors;
 mod gallery;
 mod list;
 mod radiosity;
+mod references;
 mod render;
 mod shadow_polygons;
 mod show;
@@ -75,6 +77,8 @@ enum Command {
     Export(export::Args),
     Render(render::Args),
     Compare(compare::Args),
+    References(references::Args),
+    Check(check::Args),
     Envmap(envmap::Args),
     Bench(bench::Args),
     ShadowPolygons(shadow_polygons::Args),
@@ -84,10 +88,11 @@ enum Command {
 
 impl Cli {
     /// How this command's failures map to an exit status: 1, except for `compare`
-    /// (1 beyond its thresholds, 2 for bad input).
+    /// and `check` (1 beyond their thresholds, 2 for bad input).
     pub fn failure_status(&self) -> fn(&anyhow::Error) -> u8 {
         match self.command {
             Command::Compare(_) => compare::failure_status,
+            Command::Check(_) => check::failure_status,
             _ => |_| 1,
         }
     }
@@ -191,6 +196,8 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Export(a) => export::run(a),
         Command::Render(a) => render::run(a),
         Command::Compare(a) => compare::run(a),
+        Command::References(a) => references::run(a),
+        Command::Check(a) => check::run(a),
         Command::Envmap(a) => envmap::run(a),
         Command::Bench(a) => bench::run(a),
         Command::ShadowPolygons(a) => shadow_polygons::run(a),

@@ -232,6 +232,13 @@ pub fn left_out(scene: &Scene, format: Format) -> Vec<String> {
     if scene.medium.is_some() {
         say("the participating medium is left out".into());
     }
+    if scene.shadows.method == crate::settings::ShadowMethod::None
+        && !scene.lights.is_empty()
+        && scene.radiosity.is_none()
+        && scene.global.is_none()
+    {
+        say("lumiere's scene casts no shadows (shadows.method = \"none\"); the exported lights cast them".into());
+    }
     if format == Format::Pov && (scene.radiosity.is_some() || scene.global.is_some()) {
         say("POV-Ray's scene is lit directly only (no radiosity, no global method)".into());
     }

@@ -13,9 +13,9 @@ mod staged_directory;
 pub use animation::Animation;
 pub use buffer::{Buffer, BufferData, NO_ID};
 pub use compare::{
-    Candidate, Comparison, Flip, FlipRange, FuzzyMatch, Moments, StatisticalTest, ToleranceCheck,
-    apply_mask, compare, default_pixels_per_degree, difference_image, edge_mask, flip, fuzzy_match,
-    pixels_per_degree, statistical_test, strip, tolerance_check,
+    Candidate, Comparison, Flip, FlipRange, FuzzyMatch, Moments, MomentsSum, StatisticalTest,
+    ToleranceCheck, apply_mask, compare, default_pixels_per_degree, difference_image, edge_mask,
+    flip, fuzzy_match, pixels_per_degree, statistical_test, strip, tolerance_check,
 };
 pub use staged_directory::StagedDirectory;
 

@@ -3,6 +3,7 @@
 
 mod compare_metrics;
 mod fuzzy_compare;
+mod reference_suite;
 mod robustness;
 mod support;
 

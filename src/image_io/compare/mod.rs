@@ -10,7 +10,7 @@ mod tolerance;
 
 pub use edges::{apply_mask, edge_mask};
 pub use flip::{Flip, FlipRange, default_pixels_per_degree, flip, pixels_per_degree};
-pub use statistics::{Candidate, Moments, StatisticalTest, statistical_test};
+pub use statistics::{Candidate, Moments, MomentsSum, StatisticalTest, statistical_test};
 pub use strip::strip;
 pub use tolerance::{ToleranceCheck, tolerance_check};
 

@@ -39,40 +39,94 @@ impl Moments {
         let first = renders
             .first()
             .ok_or_else(|| Error::invalid("renders", "moments need at least two renders"))?;
-        if renders.len() < 2 {
+        let mut sum = MomentsSum::new(first.width, first.height);
+        for r in renders {
+            sum.add(r)?;
+        }
+        sum.finish()
+    }
+}
+
+/// Moments gathered one render at a time (Welford's update, in double precision),
+/// so thousands of renders need the memory of two images, not of thousands.
+pub struct MomentsSum {
+    width: u32,
+    height: u32,
+    count: u32,
+    mean: Vec<[f64; 3]>,
+    squares: Vec<[f64; 3]>,
+}
+
+impl MomentsSum {
+    /// No renders yet, of `width × height` pixels.
+    pub fn new(width: u32, height: u32) -> MomentsSum {
+        let n = width as usize * height as usize;
+        MomentsSum {
+            width,
+            height,
+            count: 0,
+            mean: vec![[0.0; 3]; n],
+            squares: vec![[0.0; 3]; n],
+        }
+    }
+
+    /// Adds one render.
+    pub fn add(&mut self, render: &Image) -> Result<()> {
+        if (render.width, render.height) != (self.width, self.height) {
+            return Err(Error::SizeMismatch {
+                first: (self.width, self.height),
+                second: (render.width, render.height),
+            });
+        }
+        self.count += 1;
+        let n = self.count as f64;
+        for ((m, s), p) in self
+            .mean
+            .iter_mut()
+            .zip(&mut self.squares)
+            .zip(&render.pixels)
+        {
+            for c in 0..3 {
+                let x = p[c] as f64;
+                let delta = x - m[c];
+                m[c] += delta / n;
+                s[c] += delta * (x - m[c]);
+            }
+        }
+        Ok(())
+    }
+
+    /// The mean and the unbiased variance of one render.
+    pub fn finish(self) -> Result<Moments> {
+        if self.count < 2 {
             return Err(Error::invalid(
                 "renders",
                 "moments need at least two renders",
             ));
         }
-        for r in renders {
-            same_size(first, r)?;
-        }
-        let n = renders.len() as f64;
-        let (mut mean, mut variance) = (Vec::new(), Vec::new());
-        for k in 0..first.pixels.len() {
-            let (mut m, mut v) = ([0f32; 3], [0f32; 3]);
-            for c in 0..3 {
-                let mu = renders.iter().map(|r| r.pixels[k][c] as f64).sum::<f64>() / n;
-                let ss = renders
-                    .iter()
-                    .map(|r| (r.pixels[k][c] as f64 - mu).powi(2))
-                    .sum::<f64>();
-                m[c] = mu as f32;
-                v[c] = (ss / (n - 1.0)) as f32;
-            }
-            mean.push(m.into());
-            variance.push(v.into());
-        }
-        let image = |pixels| Image {
-            width: first.width,
-            height: first.height,
+        let n = self.count as f64;
+        let image = |pixels: Vec<glam::Vec3>| Image {
+            width: self.width,
+            height: self.height,
             pixels,
         };
+        let mean = self
+            .mean
+            .iter()
+            .map(|m| glam::Vec3::new(m[0] as f32, m[1] as f32, m[2] as f32))
+            .collect();
+        let variance = self
+            .squares
+            .iter()
+            .map(|s| {
+                let v = |c: usize| (s[c] / (n - 1.0)) as f32;
+                glam::Vec3::new(v(0), v(1), v(2))
+            })
+            .collect();
         Ok(Moments {
             mean: image(mean),
             variance: image(variance),
-            renders: renders.len() as u32,
+            renders: self.count,
         })
     }
 }

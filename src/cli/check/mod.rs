@@ -1,0 +1,278 @@
+//! `lumiere check`: a directory of candidate images (another renderer's, or
+//! lumiere's own after a change) against a reference suite, one verdict per entry
+//! and a summary; `--report` writes an HTML triage page, `--bless` takes the
+//! candidates as the new references.
+
+mod report;
+
+use super::references::manifest::{Check, EntryRecord};
+use super::references::read_manifest;
+use anyhow::{Result, bail};
+use lumiere::{
+    Candidate, FlipRange, Image, Moments, compare_images, default_pixels_per_degree, flip,
+    read_image, statistical_test, write_image,
+};
+use std::path::{Path, PathBuf};
+
+/// Check candidate images against a reference suite (made by `lumiere references`).
+///
+/// For each entry of MANIFEST, CANDIDATES/ID.exr (or .pfm, or .png) is held to the
+/// checks the manifest names: mean FLIP (LDR) under the entry's bound, and for a
+/// sampled entry, with --same-sampler, the per-pixel test against the reference's
+/// mean and variance. One line per entry (PASS, FAIL, MISSING), then a summary.
+///
+/// Exit status: 0 when every entry passes, 1 when one fails or is missing, 2 for
+/// bad input (an unreadable manifest or candidate directory).
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The suite's manifest.json.
+    manifest: PathBuf,
+    /// The directory of candidate images, one per entry, named by its id.
+    candidates: PathBuf,
+    /// Write an HTML triage page into this directory: each entry's reference,
+    /// candidate and difference strip with its figures, worst first.
+    #[arg(long, value_name = "DIR")]
+    report: Option<PathBuf>,
+    /// Run the statistical checks too: the candidates sample as lumiere does (its
+    /// own renders after a change).
+    #[arg(long)]
+    same_sampler: bool,
+    /// Take the failing candidates as the new references (after a deliberate
+    /// change), then still exit 1 so the change is looked at before it is kept.
+    #[arg(long)]
+    bless: bool,
+}
+
+/// Some entry failed or was missing: exit status 1, where bad input is 2.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct Failed(String);
+
+pub fn failure_status(error: &anyhow::Error) -> u8 {
+    if error.is::<Failed>() { 1 } else { 2 }
+}
+
+/// One entry's outcome.
+pub struct Verdict {
+    pub id: String,
+    pub title: String,
+    /// The candidate file, if found.
+    pub candidate: Option<PathBuf>,
+    /// Each check said, passed or not.
+    pub checks: Vec<(bool, String)>,
+    /// The mean FLIP, where measured (the report sorts by it).
+    pub flip: Option<f64>,
+    /// RMSE and largest difference of the displayed values, where measured.
+    pub strict: Option<(f64, u8)>,
+    /// Why the entry could not be compared (a size mismatch, an unreadable file).
+    pub error: Option<String>,
+}
+
+impl Verdict {
+    pub fn passed(&self) -> bool {
+        self.candidate.is_some() && self.error.is_none() && self.checks.iter().all(|c| c.0)
+    }
+
+    fn word(&self) -> &'static str {
+        match (&self.candidate, &self.error) {
+            (None, _) => "MISSING",
+            (_, Some(_)) => "FAIL",
+            _ if self.passed() => "PASS",
+            _ => "FAIL",
+        }
+    }
+}
+
+pub fn run(args: Args) -> Result<()> {
+    let manifest = read_manifest(&args.manifest)?;
+    let suite = args
+        .manifest
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
+    if !args.candidates.is_dir() {
+        bail!(
+            "{}: no such directory of candidates",
+            args.candidates.display()
+        );
+    }
+    let mut verdicts = Vec::new();
+    for entry in &manifest.entries {
+        let verdict = check_entry(&suite, entry, &args.candidates, args.same_sampler);
+        let figures: Vec<&str> = verdict.checks.iter().map(|c| c.1.as_str()).collect();
+        let detail = match (&verdict.candidate, &verdict.error) {
+            (None, _) => format!(
+                "no {}.exr, .pfm or .png in {}",
+                entry.id,
+                args.candidates.display()
+            ),
+            (_, Some(e)) => e.clone(),
+            _ => figures.join("; "),
+        };
+        outln!("{:<8}{:<32}{detail}", verdict.word(), entry.id)?;
+        verdicts.push(verdict);
+    }
+    let passed = verdicts.iter().filter(|v| v.passed()).count();
+    let missing = verdicts.iter().filter(|v| v.candidate.is_none()).count();
+    let failed = verdicts.len() - passed - missing;
+    outln!(
+        "{passed} passed, {failed} failed, {missing} missing of {}",
+        verdicts.len()
+    )?;
+    if let Some(dir) = &args.report {
+        report::write(dir, &suite, &manifest.entries, &verdicts)?;
+    }
+    if args.bless {
+        let blessed = bless(&suite, &manifest.entries, &verdicts)?;
+        return Err(Failed(format!(
+            "blessed {blessed} reference{}: look at them before keeping the change",
+            if blessed == 1 { "" } else { "s" }
+        ))
+        .into());
+    }
+    if passed < verdicts.len() {
+        return Err(Failed(format!(
+            "{failed} failed and {missing} missing of {} entries",
+            verdicts.len()
+        ))
+        .into());
+    }
+    Ok(())
+}
+
+/// The candidate for `id` in `dir`: EXR, then PFM, then PNG.
+fn find_candidate(dir: &Path, id: &str) -> Option<PathBuf> {
+    ["exr", "pfm", "png"]
+        .iter()
+        .map(|ext| dir.join(format!("{id}.{ext}")))
+        .find(|p| p.is_file())
+}
+
+fn check_entry(
+    suite: &Path,
+    entry: &EntryRecord,
+    candidates: &Path,
+    same_sampler: bool,
+) -> Verdict {
+    let mut verdict = Verdict {
+        id: entry.id.clone(),
+        title: entry.title.clone(),
+        candidate: find_candidate(candidates, &entry.id),
+        checks: Vec::new(),
+        flip: None,
+        strict: None,
+        error: None,
+    };
+    if let Some(path) = verdict.candidate.clone()
+        && let Err(e) = measure(suite, entry, &path, same_sampler, &mut verdict)
+    {
+        verdict.error = Some(super::one_line(&format!("{e:#}")));
+    }
+    verdict
+}
+
+fn measure(
+    suite: &Path,
+    entry: &EntryRecord,
+    candidate_path: &Path,
+    same_sampler: bool,
+    verdict: &mut Verdict,
+) -> Result<()> {
+    let reference = read_image(&suite.join(&entry.files.reference))?;
+    let candidate = read_image(candidate_path)?;
+    if (candidate.width, candidate.height) != (reference.width, reference.height) {
+        bail!(
+            "{}: is {}x{}, the reference is {}x{}",
+            candidate_path.display(),
+            candidate.width,
+            candidate.height,
+            reference.width,
+            reference.height
+        );
+    }
+    let strict = compare_images(&reference, &candidate, 1.0)?;
+    verdict.strict = Some((strict.rmse, strict.max_difference));
+    for check in &entry.checks {
+        match check {
+            Check::Flip { range, max_mean } => {
+                let range = match range.as_str() {
+                    "hdr" => FlipRange::Hdr {
+                        start: None,
+                        stop: None,
+                        exposures: None,
+                    },
+                    _ => FlipRange::Ldr,
+                };
+                let mean = flip(&reference, &candidate, range, default_pixels_per_degree())?.mean;
+                verdict.flip = Some(mean);
+                let ok = mean <= *max_mean;
+                let sign = if ok { "<=" } else { ">" };
+                verdict
+                    .checks
+                    .push((ok, format!("flip {mean:.4} {sign} {max_mean}")));
+            }
+            Check::Statistical {
+                alpha,
+                min_accepted,
+                ..
+            } if same_sampler => {
+                let variance_file = entry.files.variance.as_ref().ok_or_else(|| {
+                    anyhow::anyhow!("{}: a statistical check without a variance", entry.id)
+                })?;
+                let moments = Moments {
+                    mean: reference.clone(),
+                    variance: read_image(&suite.join(variance_file))?,
+                    renders: entry.renders,
+                };
+                let t = statistical_test(
+                    &moments,
+                    Candidate::Render(&candidate),
+                    *alpha,
+                    *min_accepted,
+                )?;
+                let sign = if t.passed { ">=" } else { "<" };
+                verdict.checks.push((
+                    t.passed,
+                    format!(
+                        "{}-test {:.3}% accepted {sign} {}%",
+                        t.test,
+                        100.0 * t.accepted_share,
+                        100.0 * min_accepted
+                    ),
+                ));
+            }
+            Check::Statistical { .. } => {}
+        }
+    }
+    Ok(())
+}
+
+/// Writes each failing candidate of a deterministic entry as its new reference;
+/// a sampled entry's mean and variance can only be remade by `lumiere references`.
+fn bless(suite: &Path, entries: &[EntryRecord], verdicts: &[Verdict]) -> Result<usize> {
+    let mut blessed = 0;
+    for (entry, verdict) in entries.iter().zip(verdicts) {
+        let Some(candidate) = &verdict.candidate else {
+            continue;
+        };
+        if verdict.passed() {
+            continue;
+        }
+        if let Some(e) = &verdict.error {
+            eprintln!("warning: {}: not blessed: {e}", entry.id);
+            continue;
+        }
+        if entry.sampled {
+            eprintln!(
+                "warning: {}: a sampled entry; remake its mean and variance with `lumiere references`",
+                entry.id
+            );
+            continue;
+        }
+        let image: Image = read_image(candidate)?;
+        write_image(&image, &suite.join(&entry.files.reference), 1.0)?;
+        eprintln!("blessed {}: {}", entry.id, candidate.display());
+        blessed += 1;
+    }
+    Ok(blessed)
+}

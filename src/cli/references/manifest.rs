@@ -1,0 +1,124 @@
+//! The reference suite's manifest (`manifest.json`), schema `lumiere-reference-suite/1`:
+//!
+//! ```text
+//! {
+//!   "schema": "lumiere-reference-suite/1",
+//!   "lumiere": "0.1.0",                     the version that made it
+//!   "settings": { "width": 256 | null,      null: each entry's test size
+//!                 "samples": 16,            seeds of a sampled entry
+//!                 "supersample": 4 },       samples per pixel side
+//!   "ids": [...],                           the entries asked for, catalogue order
+//!   "shard": { "index": 1, "count": 4 },    only in one part of a sharded suite
+//!   "entries": [ {                          one per id (of this shard)
+//!     "id", "title", "authors", "year", "topic", "citation",
+//!     "width", "height",
+//!     "sampled": bool,                      two seeds give different images
+//!     "renders": N,                         renders the reference is the mean of
+//!     "files": { "reference": "ID/reference.exr",      linear, 32-bit float
+//!                "variance": "ID/variance.exr",        sampled entries only
+//!                "buffers": { NAME: "ID/buffers/NAME.exr" | ".png" },
+//!                "scene": "ID/scene.toml" },           lumiere's own scene
+//!     "exports": { FORMAT: { "file": "ID/export/scene.EXT",
+//!                            "left_out": [ "..." ] } | { "error": "..." } },
+//!     "checks": [ { "metric": "flip", "range": "ldr", "max_mean": X },
+//!                 { "metric": "statistical", "test": "z", "alpha": A,
+//!                   "min_accepted": L, "same_sampler_only": true } ]
+//!   } ]
+//! }
+//! ```
+//!
+//! Paths are relative to the manifest's directory. Written with sorted keys and a
+//! fixed layout, so the same suite is the same bytes wherever it is made.
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+pub const SCHEMA: &str = "lumiere-reference-suite/1";
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    pub schema: String,
+    pub lumiere: String,
+    pub settings: Settings,
+    pub ids: Vec<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shard: Option<Shard>,
+    pub entries: Vec<EntryRecord>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Settings {
+    pub width: Option<u32>,
+    pub samples: u32,
+    pub supersample: u32,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Shard {
+    pub index: u32,
+    pub count: u32,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EntryRecord {
+    pub id: String,
+    pub title: String,
+    pub authors: String,
+    pub year: u32,
+    pub topic: String,
+    pub citation: String,
+    pub width: u32,
+    pub height: u32,
+    pub sampled: bool,
+    pub renders: u32,
+    pub files: Files,
+    pub exports: BTreeMap<String, Export>,
+    pub checks: Vec<Check>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Files {
+    pub reference: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub variance: Option<String>,
+    pub buffers: BTreeMap<String, String>,
+    pub scene: String,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged, deny_unknown_fields)]
+pub enum Export {
+    Written { file: String, left_out: Vec<String> },
+    Failed { error: String },
+}
+
+/// A comparison a candidate must pass.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "metric", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum Check {
+    /// Mean FLIP at most `max_mean` (any renderer's image of the scene).
+    Flip { range: String, max_mean: f64 },
+    /// The per-pixel test against the reference's mean and variance: for a
+    /// candidate that samples as lumiere does (lumiere itself after a change);
+    /// `lumiere check --same-sampler` runs it.
+    Statistical {
+        test: String,
+        alpha: f64,
+        min_accepted: f64,
+        same_sampler_only: bool,
+    },
+}
+
+impl Manifest {
+    /// The manifest as written: pretty JSON and a final newline.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut text = serde_json::to_string_pretty(self).expect("a manifest serialises");
+        text.push('\n');
+        text.into_bytes()
+    }
+}
