@@ -191,7 +191,10 @@ fn uri_bytes(uri: &str, base: &Path) -> std::result::Result<Vec<u8>, String> {
         ));
     }
     let file: PathBuf = base.join(percent_decoded(uri));
-    read_file(&file, FileOp::Read).map_err(|e| e.to_string())
+    read_file(&file, FileOp::Read).map_err(|e| match std::error::Error::source(&e) {
+        Some(cause) => format!("{e}: {cause}"),
+        None => e.to_string(),
+    })
 }
 
 /// A relative URI's path with its `%XX` escapes decoded (`my%20model.bin`).
