@@ -136,10 +136,10 @@ pub enum Error {
         source: Box<Error>,
     },
 
-    /// An OBJ or MTL model that cannot be read as one.
+    /// An OBJ, MTL or glTF model that cannot be read as one.
     #[error("{}: {message}", path.display())]
     Model {
-        /// The OBJ or MTL file.
+        /// The OBJ, MTL or glTF file.
         path: PathBuf,
         /// What is wrong.
         message: String,

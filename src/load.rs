@@ -5,18 +5,34 @@
 use crate::catalogue;
 use crate::error::{Error, FileOp, Result};
 use crate::image_io::read_file;
-use crate::scene::resources::{Directory, Layered, Resources};
+use crate::scene::resources::{Directory, InMemory, Layered, Resources};
 use crate::scene::{self, Scene};
 use crate::shadow;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-/// Loads a scene named by a catalogue id or a path to a `.toml` scene file, with
-/// `key=value` overrides applied in order (the command line's `--set`).
+/// Loads a scene named by a catalogue id, a path to a `.toml` scene file or a glTF
+/// 2.0 file (`.gltf`, `.glb`), with `key=value` overrides applied in order (the
+/// command line's `--set`).
 ///
 /// A scene file's models and textures are found beside it, then in the catalogue.
+/// A glTF scene gets lumiere's default render settings (phong shading, no
+/// shadows, a 512-pixel image at its camera's aspect ratio), which the overrides
+/// change like any scene file's; what it holds that lumiere cannot render is in
+/// the scene's warnings, each starting `gltf: `.
 pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
     let path = Path::new(spec);
-    if spec.ends_with(".toml") || path.exists() {
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if matches!(extension.as_deref(), Some("gltf" | "glb")) {
+        let imported = scene::gltf::read(path)?;
+        let files = Box::new(InMemory(imported.files));
+        let mut scene = scene_from_parsed(imported.table, spec, Some(files), overrides)?;
+        let mut warnings = imported.warnings;
+        warnings.append(&mut scene.warnings);
+        scene.warnings = warnings;
+        Ok(scene)
+    } else if spec.ends_with(".toml") || path.exists() {
         let bytes = read_file(path, FileOp::ReadScene)?;
         let text = String::from_utf8(bytes).map_err(|_| {
             let not_text = std::io::Error::new(
@@ -26,7 +42,7 @@ pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
             Error::io(FileOp::ReadScene, path, not_text)
         })?;
         let base_dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-        scene_from_text(&text, spec, Some(base_dir), overrides)
+        scene_from_text(&text, spec, Some(Box::new(Directory(base_dir))), overrides)
     } else {
         let table = catalogue::entry(spec)?.scene;
         scene_from_parsed(table, spec, None, overrides)
@@ -45,7 +61,7 @@ pub fn scene_from_toml(text: &str, overrides: &[String]) -> Result<Scene> {
 fn scene_from_text(
     text: &str,
     spec: &str,
-    base_dir: Option<PathBuf>,
+    own: Option<Box<dyn Resources>>,
     overrides: &[String],
 ) -> Result<Scene> {
     let mut table = scene::tables::parse(text, spec)?;
@@ -57,15 +73,16 @@ fn scene_from_text(
         scene::tables::merge(&mut merged, table);
         table = merged;
     }
-    scene_from_parsed(table, spec, base_dir, overrides)
+    scene_from_parsed(table, spec, own, overrides)
 }
 
 /// The scene of a parsed table, its overrides applied; files are looked for in
-/// `base_dir` (a scene file's folder) first, then in the catalogue.
+/// `own` (a scene file's folder, a glTF file's meshes and images) first, then in
+/// the catalogue.
 fn scene_from_parsed(
     mut table: toml::Table,
     spec: &str,
-    base_dir: Option<PathBuf>,
+    own: Option<Box<dyn Resources>>,
     overrides: &[String],
 ) -> Result<Scene> {
     // Entries of the named collections the overrides add (collection, name, assignment).
@@ -80,9 +97,9 @@ fn scene_from_parsed(
     refuse_unused_textures(&table, &added)?;
     let catalogue = catalogue::resources();
     let layered;
-    let resources: &dyn Resources = match base_dir {
-        Some(dir) => {
-            layered = Layered(vec![Box::new(Directory(dir)), Box::new(catalogue)]);
+    let resources: &dyn Resources = match own {
+        Some(own) => {
+            layered = Layered(vec![own, Box::new(catalogue)]);
             &layered
         }
         None => &catalogue,

@@ -1,22 +1,26 @@
-//! `lumiere export`: a scene as POV-Ray SDL or Mitsuba 3 XML (the library's
-//! `export`), with what it leaves out printed as warnings.
+//! `lumiere export`: a scene as POV-Ray SDL, Mitsuba 3 XML, glTF 2.0 or OBJ + MTL +
+//! JSON (the library's `export`), with what it leaves out printed as warnings.
 
 use anyhow::Result;
 use lumiere::export::{self, Format, MitsubaIntegrator, Options};
 use lumiere::load_scene;
 use std::path::PathBuf;
 
-/// Write a scene (a catalogue id or a .toml file) as POV-Ray SDL or Mitsuba 3 XML.
+/// Write a scene (a catalogue id, a .toml or a glTF file) as POV-Ray SDL, Mitsuba 3
+/// XML, glTF 2.0 or OBJ.
 ///
-/// Mitsuba's meshes go into OUT-meshes/ beside the XML, one OBJ per material.
+/// Mitsuba's meshes go into OUT-meshes/ beside the XML, one OBJ per material. glTF
+/// is one .gltf file, its buffer embedded, lights through KHR_lights_punctual at
+/// 683 lm/W. OBJ writes OUT.obj, OUT.mtl and OUT.json (camera, lights, materials
+/// and units) side by side.
 #[derive(clap::Args, Debug)]
 #[command(allow_negative_numbers = true)]
 pub struct Args {
-    /// A catalogue id or the path of a .toml scene file.
+    /// A catalogue id or the path of a .toml, .gltf or .glb scene file.
     scene: String,
     #[arg(long, value_enum)]
     format: Format,
-    /// The scene file written (.pov or .xml).
+    /// The scene file written (.pov, .xml, .gltf or .obj).
     #[arg(short, long)]
     output: PathBuf,
     #[command(flatten)]

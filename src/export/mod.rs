@@ -1,13 +1,16 @@
 //! A lumiere scene as another renderer's scene, so that any catalogue entry can be
 //! rendered by POV-Ray or Mitsuba 3 and compared with lumiere: the same camera,
-//! geometry, materials, lights and units.
+//! geometry, materials, lights and units. glTF 2.0 and OBJ + MTL + a JSON sidecar
+//! carry the same scene to any other renderer or viewer.
 //!
 //! What the other renderer cannot say the same way (textures, bump maps,
 //! environment maps, media, lumiere's normalised Phong lobe) is left out, and each
 //! thing left out is named in a warning: an exported scene is a peer for direct
 //! and diffuse light, not a copy of every effect.
 
+mod gltf;
 mod mitsuba;
+mod obj;
 mod pov;
 
 use crate::error::{Error, Result};
@@ -24,6 +27,11 @@ pub enum Format {
     Pov,
     /// Mitsuba 3 XML (`.xml`), its meshes as OBJ files in a folder beside it.
     Mitsuba,
+    /// glTF 2.0 (`.gltf`, its buffer embedded), lights through KHR_lights_punctual.
+    Gltf,
+    /// Wavefront OBJ (`.obj`) with its `.mtl` and a `.json` sidecar (camera, lights,
+    /// materials, units) beside it.
+    Obj,
 }
 
 impl Format {
@@ -32,6 +40,8 @@ impl Format {
         match self {
             Format::Pov => "pov",
             Format::Mitsuba => "xml",
+            Format::Gltf => "gltf",
+            Format::Obj => "obj",
         }
     }
 
@@ -40,6 +50,8 @@ impl Format {
         match self {
             Format::Pov => "POV-Ray",
             Format::Mitsuba => "Mitsuba",
+            Format::Gltf => "glTF",
+            Format::Obj => "Wavefront OBJ",
         }
     }
 }
@@ -81,7 +93,8 @@ impl Options {
     }
 }
 
-/// Refuses an `output` whose extension is not `format`'s (`.pov`, `.xml`): a caller
+/// Refuses an `output` whose extension is not `format`'s (`.pov`, `.xml`, `.gltf`,
+/// `.obj`): a caller
 /// may ask before the scene is loaded.
 pub fn check_output(format: Format, output: &Path) -> Result<()> {
     let extension = format.extension();
@@ -98,9 +111,10 @@ pub fn check_output(format: Format, output: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Writes `scene` at `output` (a `.pov` or `.xml` file; Mitsuba's meshes go into the
-/// folder `OUT-meshes/` beside it), each file written whole or not at all. Returns
-/// what the export left out, a line each (see `left_out`).
+/// Writes `scene` at `output` (a `.pov`, `.xml`, `.gltf` or `.obj` file; Mitsuba's
+/// meshes go into the folder `OUT-meshes/` beside it, OBJ's `.mtl` and `.json`
+/// beside it), each file written whole or not at all. Returns what the export left
+/// out, a line each (see `left_out`).
 pub fn export(scene: &Scene, options: &Options, output: &Path) -> Result<Vec<String>> {
     check_output(options.format, output)?;
     let meshes = meshes(scene);
@@ -119,11 +133,13 @@ pub fn export(scene: &Scene, options: &Options, output: &Path) -> Result<Vec<Str
             );
             mitsuba::write(scene, &meshes, output, options.spp, integrator)?;
         }
+        Format::Gltf => write_atomically(output, gltf::document(scene, &meshes).as_bytes())?,
+        Format::Obj => obj::write(scene, &meshes, output)?,
     }
     Ok(left_out(scene, options.format))
 }
 
-/// The polygons of one material: what both formats write as one mesh.
+/// The polygons of one material: what every format writes as one mesh.
 struct Mesh {
     material: usize,
     /// Each polygon's vertices: position and shading normal.
@@ -179,13 +195,21 @@ pub fn left_out(scene: &Scene, format: Format) -> Vec<String> {
                 m.name
             ));
         }
-        if m.specular != Vec3::ZERO {
+        if m.specular != Vec3::ZERO && format != Format::Obj {
             say(format!(
                 "material `{}`: the Phong highlight is left out (diffuse only)",
                 m.name
             ));
         }
-        if m.environment.is_some()
+        if format == Format::Obj {
+            // The sidecar holds every coefficient; only the map is missing.
+            if m.environment.is_some() {
+                say(format!(
+                    "material `{}`: its environment map is left out (the sidecar keeps mirror, ior and transmittance)",
+                    m.name
+                ));
+            }
+        } else if m.environment.is_some()
             || m.ior.is_some()
             || m.transmittance != Vec3::ZERO
             || m.translucence != Vec3::ZERO
@@ -196,23 +220,32 @@ pub fn left_out(scene: &Scene, format: Format) -> Vec<String> {
             ));
         }
         if m.mirror != Vec3::ZERO {
-            say(match format {
-                Format::Pov => format!(
+            match format {
+                Format::Pov => say(format!(
                     "material `{}`: the mirror is left out of POV-Ray's direct light",
                     m.name
-                ),
-                Format::Mitsuba => format!(
+                )),
+                Format::Mitsuba => say(format!(
                     "material `{}`: a one-sided conductor, without its diffuse part (black under the direct integrator)",
                     m.name
-                ),
-            });
+                )),
+                Format::Gltf => say(format!(
+                    "material `{}`: the mirror is left out (glTF's metallic-roughness holds no mirror beside a diffuse part)",
+                    m.name
+                )),
+                Format::Obj => {}
+            }
         }
     }
-    if format == Format::Mitsuba && scene.render.background != Vec3::ZERO {
-        say(
-            "the background colour is left out (Mitsuba's would be an emitter lighting the scene)"
-                .into(),
-        );
+    if scene.render.background != Vec3::ZERO {
+        match format {
+            Format::Mitsuba => say(
+                "the background colour is left out (Mitsuba's would be an emitter lighting the scene)"
+                    .into(),
+            ),
+            Format::Gltf => say("the background colour is left out (glTF has none)".into()),
+            Format::Pov | Format::Obj => {}
+        }
     }
     for (index, light) in scene.lights.iter().enumerate() {
         match light {
@@ -226,6 +259,10 @@ pub fn left_out(scene: &Scene, format: Format) -> Vec<String> {
                     light.label(index)
                 ))
             }
+            Light::Polygon(_) | Light::Sphere(_) if format == Format::Gltf => say(format!(
+                "{}: an emissive mesh (KHR_materials_emissive_strength), not a punctual light: a glTF viewer may not light the scene with it",
+                light.label(index)
+            )),
             _ => {}
         }
     }
@@ -239,11 +276,21 @@ pub fn left_out(scene: &Scene, format: Format) -> Vec<String> {
     {
         say("lumiere's scene casts no shadows (shadows.method = \"none\"); the exported lights cast them".into());
     }
-    if format == Format::Pov && (scene.radiosity.is_some() || scene.global.is_some()) {
-        say("POV-Ray's scene is lit directly only (no radiosity, no global method)".into());
+    if scene.radiosity.is_some() || scene.global.is_some() {
+        match format {
+            Format::Pov => say(
+                "POV-Ray's scene is lit directly only (no radiosity, no global method)".into(),
+            ),
+            Format::Gltf | Format::Obj => say(
+                "the radiosity or global-illumination settings are left out (the files hold the scene, not how lumiere lights it)"
+                    .into(),
+            ),
+            Format::Mitsuba => {}
+        }
     }
     for (index, light) in scene.lights.iter().enumerate() {
         if let Light::Spot(s) = light
+            && format != Format::Obj
             && !matches!(s.distribution, SpotDistribution::CosinePower(p) if p == 0.0)
         {
             say(format!(

@@ -2163,3 +2163,78 @@ fn a_missing_output_directory_is_named_without_temporary_names() {
         run.stderr
     );
 }
+
+/// `export --format gltf` and `--format obj` write their files, which render (the
+/// glTF) and read (the OBJ's sidecar) back; what glTF leaves out is a warning
+/// line, and what is read from a glTF and left out is one too.
+#[test]
+fn exports_gltf_and_obj_that_read_back() {
+    let dir = workspace(&[]);
+    let run = lumiere(
+        &[
+            "export",
+            "cornell-box",
+            "--format",
+            "gltf",
+            "-o",
+            "box.gltf",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stderr
+            .lines()
+            .any(|l| l.starts_with("warning: export: light 0 (polygon")
+                && l.contains("not a punctual light")),
+        "{}",
+        run.stderr
+    );
+    let run = lumiere(
+        &[
+            "render", "box.gltf", "--width", "16", "--height", "16", "-o", "box.png",
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stderr
+            .lines()
+            .any(|l| l.starts_with("warning: gltf: material")
+                && l.contains("its emission is left out")),
+        "{}",
+        run.stderr
+    );
+    let image = lumiere::read_image(&dir.path().join("box.png")).unwrap();
+    assert_eq!((image.width, image.height), (16, 16));
+
+    let run = lumiere(
+        &[
+            "export",
+            "cornell-box-point",
+            "--format",
+            "obj",
+            "-o",
+            "box.obj",
+        ],
+        dir.path(),
+    );
+    assert_eq!((run.code, run.stderr.as_str()), (0, ""));
+    for file in ["box.obj", "box.mtl", "box.json"] {
+        assert!(dir.path().join(file).is_file(), "{file}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("box.json")).unwrap()).unwrap();
+    assert_eq!(json["lights"][0]["kind"], "point");
+    assert_eq!(json["obj"], "box.obj");
+    // The wrong extension is refused before anything is written.
+    let run = lumiere(
+        &["export", "cornell-box", "--format", "gltf", "-o", "box.glb"],
+        dir.path(),
+    );
+    assert_clear_error(
+        &run,
+        "a glTF scene is written as .gltf",
+        &dir.path().join("box.glb"),
+    );
+}

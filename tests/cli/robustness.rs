@@ -776,3 +776,41 @@ fn compare_under_a_budget_and_an_image_to_standard_output() {
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert!(run.stdout.contains("rmse"), "{}", run.stdout);
 }
+
+/// A glTF that cannot be read is one error line naming the file: not JSON, cut
+/// short, a GLB cut short, a buffer file that is missing, a buffer shorter than it
+/// says.
+#[test]
+fn broken_gltf_files_are_one_error_line() {
+    let buffer = |uri: &str, length: usize| {
+        format!(
+            r#"{{"asset": {{"version": "2.0"}}, "buffers": [{{"byteLength": {length}, "uri": "{uri}"}}]}}"#
+        )
+    };
+    let valid = buffer("data:application/octet-stream;base64,AAAAAA==", 4);
+    let cut = &valid[..valid.len() / 2];
+    let dir = workspace(&[
+        ("garbage.gltf", "this is not json"),
+        ("cut.gltf", cut),
+        ("cut.glb", "glTF\u{2}\0\0\0"),
+        ("no-buffer.gltf", &buffer("missing.bin", 12)),
+        ("short.bin", "abc"),
+        ("short.gltf", &buffer("short.bin", 12)),
+    ]);
+    let out = dir.path().join("out.png");
+    for (file, fragment) in [
+        ("garbage.gltf", "garbage.gltf: not a readable glTF 2.0 file"),
+        ("cut.gltf", "cut.gltf: not a readable glTF 2.0 file"),
+        ("cut.glb", "cut.glb: not a readable glTF 2.0 file"),
+        ("no-buffer.gltf", "no-buffer.gltf: buffer 0: cannot read"),
+        (
+            "short.gltf",
+            "short.gltf: buffer 0 holds 3 bytes, fewer than its byteLength 12",
+        ),
+    ] {
+        let run = lumiere(&["render", file, "-o", "out.png"], dir.path());
+        assert_clear_error(&run, fragment, &out);
+    }
+    let run = lumiere(&["render", "no-buffer.gltf", "-o", "out.png"], dir.path());
+    assert!(run.stderr.contains("missing.bin"), "{}", run.stderr);
+}
