@@ -4,6 +4,7 @@
 //! page), the cache, and bad input.
 
 mod browser;
+mod report;
 
 use browser::Browser;
 use std::path::{Path, PathBuf};
@@ -85,9 +86,18 @@ fn every_page_loads_whole_in_a_real_browser() {
     };
     let pages = pages(&site);
     let shots = Path::new(env!("CARGO_TARGET_TMPDIR")).join("gallery-screenshots");
-    std::fs::create_dir_all(&shots).unwrap();
+    check_pages(&site, &pages, &shots);
+}
+
+/// The browser checks every page of a site must pass: it loads whole (every image,
+/// folded ones too, with a size and a description; no error in the console), its
+/// links stay in the site and find their anchors, nothing is fetched from elsewhere
+/// and no script runs, and on a phone nothing is wider than the screen.
+/// Screenshots go to `shots`.
+pub fn check_pages(site: &Path, pages: &[PathBuf], shots: &Path) {
+    std::fs::create_dir_all(shots).unwrap();
     let mut browser = Browser::start();
-    for page in &pages {
+    for page in pages {
         let name = page.file_stem().unwrap().to_string_lossy().into_owned();
         let url = format!("file://{}", page.canonicalize().unwrap().display());
         browser.open(&url);
@@ -122,7 +132,11 @@ fn every_page_loads_whole_in_a_real_browser() {
             let link = link.as_str().unwrap();
             assert!(!link.contains("://"), "{name}: {link} leaves the site");
             let (file, anchor) = link.split_once('#').unwrap_or((link, ""));
-            let target = site.join(file);
+            let target = if file.is_empty() {
+                page.clone()
+            } else {
+                site.join(file)
+            };
             assert!(target.is_file(), "{name}: {link} is missing");
             if !anchor.is_empty() {
                 let text = std::fs::read_to_string(&target).unwrap();
@@ -147,7 +161,7 @@ fn every_page_loads_whole_in_a_real_browser() {
 
     // A phone: images scale and text wraps, so nothing is wider than the screen.
     browser.set_viewport(390, 844, true);
-    for page in &pages {
+    for page in pages {
         let name = page.file_stem().unwrap().to_string_lossy().into_owned();
         browser.open(&format!(
             "file://{}",

@@ -101,7 +101,7 @@ pub fn write(
 }
 
 const STYLE: &str = "body{font-family:sans-serif;margin:1rem auto;max-width:60rem;padding:0 1rem;\
-color:#222}section{border-left:.4rem solid #4a4;padding:.2rem 1rem;margin:1rem 0}\
+color:#222}section{border-left:.4rem solid #4a4;padding:.2rem 1rem;margin:1rem 0;display:flow-root}\
 section.fail{border-color:#c33}.verdict{font-family:monospace}img{max-width:100%;height:auto;\
 image-rendering:pixelated}img.thumb{width:8rem;float:right;margin-left:1rem}img.strip{display:block;\
 width:100%;clear:both}ul{padding-left:1.2rem}p.why{color:#c33;overflow-wrap:anywhere}";
