@@ -220,15 +220,21 @@ fn what_cannot_be_carried_over_is_named_and_a_wrong_extension_refused() {
         warnings.contains("participating medium is left out"),
         "{warnings}"
     );
-    let quiet = lumiere(
+    let unshadowed = lumiere(
         &[
             "export",
             "cornell-box-point",
             "--format",
             "pov",
             "-o",
-            "c.pov",
+            "u.pov",
         ],
+        d,
+    );
+    assert!(unshadowed.contains("casts no shadows"), "{unshadowed}");
+    // The same box with its shadows: nothing is left out.
+    let quiet = lumiere(
+        &["export", "shadow-volumes", "--format", "pov", "-o", "c.pov"],
         d,
     );
     assert_eq!(quiet, "");
