@@ -233,6 +233,10 @@ pub enum Error {
     OverBudget(Box<OverBudget>),
 
     /// A frame was asked for a buffer it does not make; `known` are those it does.
+    /// A frame stopped by its renderer's stop switch (`Renderer::set_stop`) before
+    /// it was done.
+    #[error("the render was stopped before it was done")]
+    Stopped,
     #[error("this scene's frame has no buffer `{name}`; it has: {}", known.join(", "))]
     UnknownBuffer {
         /// The buffer asked for.

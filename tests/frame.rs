@@ -468,3 +468,32 @@ fn progress_is_told_band_by_band_up_to_the_whole_frame() {
         "with progress",
     );
 }
+
+/// A stop switch set from another thread ends the frame with `Error::Stopped`; the
+/// pre-passes built are kept, and once the switch is cleared the next frame renders.
+#[test]
+fn a_stopped_frame_ends_early_and_keeps_its_prepasses() {
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let sets = [
+        "camera.width=64",
+        "camera.height=64",
+        "shadows.method=\"shadow-volumes\"",
+    ]
+    .map(String::from);
+    let mut renderer =
+        lumiere::Renderer::new(lumiere::load_scene("cornell-box-point", &sets).unwrap());
+    let stop = Arc::new(AtomicBool::new(true));
+    renderer.set_stop(stop.clone());
+    assert!(matches!(renderer.render(), Err(lumiere::Error::Stopped)));
+    let built = renderer.prepasses();
+    assert_eq!(built.light_shadows, 1);
+    stop.store(false, Ordering::Relaxed);
+    let image = renderer.render().unwrap();
+    assert_eq!((image.width, image.height), (64, 64));
+    assert_eq!(
+        renderer.prepasses(),
+        built,
+        "the pre-passes are not built again"
+    );
+}

@@ -3,7 +3,7 @@
 use super::buffers::{FrameBuffers, MediumBand};
 use super::medium::MediumWork;
 use super::plan::FramePlan;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::image_io::{Buffer, Image};
 use crate::raster::{EdgeTable, Visibility, rasterize_rows, sample_view, uv_gradients};
 use crate::scene::Scene;
@@ -154,6 +154,9 @@ pub(super) fn render_frame(scene: &Scene, plan: &FramePlan, wanted: &[String]) -
         samples = band.samples;
         if let Some(progress) = &plan.progress {
             progress(last as f64 / height as f64);
+        }
+        if plan.stopped() {
+            return Err(Error::Stopped);
         }
     }
     Ok(Frame {

@@ -8,6 +8,7 @@ use super::integrator::Integrator;
 use crate::shadow::{LightShadows, SceneOccluders};
 use crate::texture::environment::EnvironmentMap;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Per scene environment, its map (`None`: not shown).
 pub type EnvironmentMaps = Arc<[Option<Arc<EnvironmentMap>>]>;
@@ -28,6 +29,17 @@ pub struct FramePlan {
     pub hemicube_element: usize,
     /// Told the fraction of the frame done after each band, if anyone asked.
     pub progress: Option<Progress>,
+    /// Read before each band: once set, the frame ends with `Error::Stopped`.
+    pub stop: Option<Arc<AtomicBool>>,
+}
+
+impl FramePlan {
+    /// Whether the frame was asked to stop.
+    pub fn stopped(&self) -> bool {
+        self.stop
+            .as_ref()
+            .is_some_and(|s| s.load(Ordering::Relaxed))
+    }
 }
 
 /// A watcher of a frame's progress: called with the fraction of its rows done.

@@ -59,6 +59,7 @@ pub struct Renderer {
     built_captures: AtomicUsize,
     hemicube_element: usize,
     progress: Option<super::plan::Progress>,
+    stop: Option<Arc<std::sync::atomic::AtomicBool>>,
 }
 
 impl Renderer {
@@ -79,6 +80,7 @@ impl Renderer {
             built_captures: AtomicUsize::new(0),
             hemicube_element: 0,
             progress: None,
+            stop: None,
         }
     }
 
@@ -160,6 +162,14 @@ impl Renderer {
     /// (a command line's progress bar).
     pub fn set_progress(&mut self, progress: impl Fn(f64) + Send + Sync + 'static) {
         self.progress = Some(Arc::new(progress));
+    }
+
+    /// A switch another thread may set to stop the scan-line frame being rendered:
+    /// it ends after its current band of rows with `Error::Stopped`, and the
+    /// pre-passes already built are kept. (Whitted's ray-traced frames and a
+    /// radiosity solve run to their end.)
+    pub fn set_stop(&mut self, stop: Arc<std::sync::atomic::AtomicBool>) {
+        self.stop = Some(stop);
     }
 
     pub fn set_hemicube_element(&mut self, element: usize) {
@@ -311,6 +321,7 @@ impl Renderer {
             occluders,
             hemicube_element: self.hemicube_element,
             progress: self.progress.clone(),
+            stop: self.stop.clone(),
         })
     }
 
