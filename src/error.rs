@@ -232,11 +232,12 @@ pub enum Error {
     #[error(transparent)]
     OverBudget(Box<OverBudget>),
 
-    /// A frame was asked for a buffer it does not make; `known` are those it does.
     /// A frame stopped by its renderer's stop switch (`Renderer::set_stop`) before
     /// it was done.
     #[error("the render was stopped before it was done")]
     Stopped,
+
+    /// A frame was asked for a buffer it does not make; `known` are those it does.
     #[error("this scene's frame has no buffer `{name}`; it has: {}", known.join(", "))]
     UnknownBuffer {
         /// The buffer asked for.
