@@ -1,7 +1,8 @@
 //! OpenEXR: linear RGB as 32-bit floats, written through the `exr` crate with
 //! lossless ZIP compression over blocks of 16 scan lines (the held linear references
-//! under golden/ are kept this way); any exposure is the viewer's business, as with
-//! PFM.
+//! under golden/ are kept this way), the blocks compressed in parallel and written in
+//! order (the same bytes as one thread writes); any exposure is the viewer's
+//! business, as with PFM.
 
 use super::Image;
 use crate::error::{Error, Result};
@@ -22,7 +23,6 @@ pub fn encode(image: &Image) -> Result<Vec<u8>> {
     );
     let mut out = Cursor::new(Vec::new());
     exr.write()
-        .non_parallel()
         .to_buffered(&mut out)
         .map_err(|e| Error::image(format!("cannot encode OpenEXR: {e}")))?;
     Ok(out.into_inner())
@@ -142,5 +142,40 @@ mod tests {
                 b.to_array().map(f32::to_bits)
             );
         }
+    }
+}
+
+#[cfg(test)]
+mod parallel_tests {
+    use super::*;
+
+    /// The blocks compressed in parallel are the bytes one thread writes.
+    #[test]
+    fn parallel_blocks_write_the_same_bytes_as_one_thread() {
+        let pixels = (0..300 * 200)
+            .map(|i| {
+                Vec3::new(
+                    (i % 300) as f32 / 300.0,
+                    (i / 300) as f32 * 0.01,
+                    (i % 7) as f32,
+                )
+            })
+            .collect();
+        let image = Image {
+            width: 300,
+            height: 200,
+            pixels,
+        };
+        let parallel = encode(&image).unwrap();
+        let one = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let serial = one.install(|| encode(&image).unwrap());
+        assert!(parallel == serial, "the bytes depend on the threads");
+        assert_eq!(
+            super::super::decode(&parallel, super::super::Format::Exr).unwrap(),
+            image
+        );
     }
 }
