@@ -330,3 +330,30 @@ fn check_refuses_bad_manifests_and_candidate_directories_in_one_line() {
         &d.join("nothing"),
     );
 }
+
+#[test]
+fn ray_traced_entries_keep_their_own_antialiasing() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let run = lumiere(
+        &[
+            "references",
+            "-o",
+            "s",
+            "ray-tracing",
+            "shadow-volumes",
+            "--width",
+            "32",
+        ],
+        d,
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let m = manifest(&d.join("s"));
+    let supersample: Vec<u64> = m["entries"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["supersample"].as_u64().unwrap())
+        .collect();
+    assert_eq!(supersample, [1, 4], "Whitted's subdivision, then 4 x 4");
+}

@@ -42,10 +42,16 @@ pub fn already_made(suite: &Path, id: &str, settings: &Settings) -> Option<Entry
 pub fn make(suite: &Path, id: &str, settings: &Settings) -> Result<EntryRecord> {
     let entry = catalogue::entry(id)?;
     let (width, height) = size(id, &entry.algorithm, settings.width)?;
+    // Whitted's tracer antialiases by its own adaptive subdivision and refuses
+    // supersampling: its entries keep one sample a pixel.
+    let traced = load_scene(id, &[])?
+        .global
+        .is_some_and(|g| g.method == lumiere::settings::GlobalMethod::RayTracing);
+    let supersample = if traced { 1 } else { settings.supersample };
     let sets = vec![
         format!("camera.width={width}"),
         format!("camera.height={height}"),
-        format!("render.supersample={}", settings.supersample),
+        format!("render.supersample={supersample}"),
     ];
     let seeded = |seed: u32| {
         let mut s = sets.clone();
@@ -169,6 +175,7 @@ pub fn make(suite: &Path, id: &str, settings: &Settings) -> Result<EntryRecord> 
         citation: entry.algorithm.citation.clone(),
         width,
         height,
+        supersample,
         sampled,
         renders,
         files,

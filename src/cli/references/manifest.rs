@@ -11,7 +11,7 @@
 //!   "shard": { "index": 1, "count": 4 },    only in one part of a sharded suite
 //!   "entries": [ {                          one per id (of this shard)
 //!     "id", "title", "authors", "year", "topic", "citation",
-//!     "width", "height",
+//!     "width", "height", "supersample",     its size and samples per pixel side
 //!     "sampled": bool,                      two seeds give different images
 //!     "renders": N,                         renders the reference is the mean of
 //!     "files": { "reference": "ID/reference.exr",      linear, 32-bit float
@@ -73,6 +73,8 @@ pub struct EntryRecord {
     pub citation: String,
     pub width: u32,
     pub height: u32,
+    /// Samples per pixel side the reference was rendered with.
+    pub supersample: u32,
     pub sampled: bool,
     pub renders: u32,
     pub files: Files,
