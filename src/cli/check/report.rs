@@ -54,6 +54,8 @@ pub fn write(
             v.word(),
             escape(&v.title)
         )?;
+        // Read again rather than kept from the check: a suite's images would all be
+        // held at once.
         let reference = read_image(&suite.join(&entry.files.reference))?;
         match (&v.candidate, &v.error) {
             (Some(path), None) => {

@@ -105,7 +105,7 @@ pub fn make(suite: &Path, id: &str, settings: &Settings) -> Result<EntryRecord> 
             BufferData::Values { .. } => ImageFormat::Exr,
             BufferData::Ids(_) | BufferData::Counts(_) => ImageFormat::Png,
         };
-        let name = format!("buffers/{}.{}", buffer.name, extension(format));
+        let name = format!("buffers/{}.{}", buffer.name, format.extension());
         write(&name, &buffer.to_image(format), 1.0)?;
         files
             .buffers
@@ -200,12 +200,4 @@ fn size(id: &str, algorithm: &catalogue::Algorithm, width: Option<u32>) -> Resul
     let camera = load_scene(id, &[])?.camera;
     let h = ((w as f64 * camera.height as f64 / camera.width as f64).round() as u32).max(1);
     Ok((w, h))
-}
-
-fn extension(format: ImageFormat) -> &'static str {
-    match format {
-        ImageFormat::Png => "png",
-        ImageFormat::Pfm => "pfm",
-        ImageFormat::Exr => "exr",
-    }
 }

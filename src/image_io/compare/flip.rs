@@ -78,12 +78,7 @@ impl Flip {
 /// FLIP of `test` against `reference` (linear images of the same size), at
 /// `ppd` pixels per degree.
 pub fn flip(reference: &Image, test: &Image, range: FlipRange, ppd: f32) -> Result<Flip> {
-    if (reference.width, reference.height) != (test.width, test.height) {
-        return Err(Error::SizeMismatch {
-            first: (reference.width, reference.height),
-            second: (test.width, test.height),
-        });
-    }
+    super::same_size(reference, test)?;
     if !(ppd.is_finite() && ppd > 0.0) {
         return Err(Error::invalid(
             "pixels-per-degree",
@@ -159,17 +154,20 @@ fn clamp01(p: Vec3) -> Vec3 {
 }
 
 /// ACES's filmic curve as FLIP fits it (Narkowicz's fit with the 0.6 pre-exposure
-/// folded into its coefficients), per channel.
+/// folded into its coefficients): `(T0 c² + T1 c + T2) / (T3 c² + T4 c + T5)`.
+const ACES: [f32; 6] = [
+    0.6 * 0.6 * 2.51,
+    0.6 * 0.03,
+    0.0,
+    0.6 * 0.6 * 2.43,
+    0.6 * 0.59,
+    0.14,
+];
+
+/// The ACES curve, per channel.
 fn aces(c: Vec3) -> Vec3 {
-    const T: [f32; 6] = [
-        0.6 * 0.6 * 2.51,
-        0.6 * 0.03,
-        0.0,
-        0.6 * 0.6 * 2.43,
-        0.6 * 0.59,
-        0.14,
-    ];
-    (c * c * T[0] + c * T[1] + T[2]) / (c * c * T[3] + c * T[4] + T[5])
+    let t = ACES;
+    (c * c * t[0] + c * t[1] + t[2]) / (c * c * t[3] + c * t[4] + t[5])
 }
 
 /// HDR-FLIP's exposures from the reference: the first brings its brightest pixel,
@@ -177,14 +175,7 @@ fn aces(c: Vec3) -> Vec3 {
 fn exposure_range(pixels: &[Vec3]) -> Result<(f32, f32)> {
     // x where aces(x) = 0.85: the larger root of (T0 − tT3) x² + (T1 − tT4) x + (T2 − tT5).
     let t = 0.85f32;
-    let (t0, t1, t2, t3, t4, t5) = (
-        0.6f32 * 0.6 * 2.51,
-        0.6f32 * 0.03,
-        0.0f32,
-        0.6f32 * 0.6 * 2.43,
-        0.6f32 * 0.59,
-        0.14f32,
-    );
+    let [t0, t1, t2, t3, t4, t5] = ACES;
     let (a, b, c) = (t0 - t * t3, t1 - t * t4, t2 - t * t5);
     let half = -0.5 * (b / a);
     let x_max = half + (half * half - c / a).sqrt();

@@ -33,12 +33,7 @@ pub struct Comparison {
 
 /// Compares two images of the same size, each encoded to 8-bit sRGB after `exposure`.
 pub fn compare(a: &Image, b: &Image, exposure: f32) -> Result<Comparison> {
-    if (a.width, a.height) != (b.width, b.height) {
-        return Err(Error::SizeMismatch {
-            first: (a.width, a.height),
-            second: (b.width, b.height),
-        });
-    }
+    same_size(a, b)?;
     let mut squares = 0.0;
     let mut max_difference = 0u8;
     let mut differing = 0usize;
@@ -76,12 +71,7 @@ pub struct FuzzyMatch {
 
 /// The fuzzy matching figures of two images of the same size (see `FuzzyMatch`).
 pub fn fuzzy_match(a: &Image, b: &Image, exposure: f32, border: u32) -> Result<FuzzyMatch> {
-    if (a.width, a.height) != (b.width, b.height) {
-        return Err(Error::SizeMismatch {
-            first: (a.width, a.height),
-            second: (b.width, b.height),
-        });
-    }
+    same_size(a, b)?;
     let inside = |i: u32, n: u32| i >= border && i + border < n;
     let mut m = FuzzyMatch {
         differing_pixels: 0,
@@ -138,4 +128,15 @@ fn displayed_difference(p: Vec3, q: Vec3, exposure: f32) -> [u8; 3] {
             a[c].abs_diff(b[c])
         }
     })
+}
+
+/// Refuses two images of different sizes.
+pub(super) fn same_size(a: &Image, b: &Image) -> Result<()> {
+    if (a.width, a.height) != (b.width, b.height) {
+        return Err(Error::SizeMismatch {
+            first: (a.width, a.height),
+            second: (b.width, b.height),
+        });
+    }
+    Ok(())
 }

@@ -19,6 +19,7 @@
 //! values agree to a relative 1e-6, so a bias there is always found.
 
 use super::super::Image;
+use super::same_size;
 use crate::error::{Error, Result};
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
@@ -272,14 +273,4 @@ fn noiseless(m: f64, x: f64) -> f64 {
     } else {
         0.0
     }
-}
-
-fn same_size(a: &Image, b: &Image) -> Result<()> {
-    if (a.width, a.height) != (b.width, b.height) {
-        return Err(Error::SizeMismatch {
-            first: (a.width, a.height),
-            second: (b.width, b.height),
-        });
-    }
-    Ok(())
 }

@@ -3,7 +3,8 @@
 //! silhouettes, in noisy penumbrae), on the linear values after the exposure.
 
 use super::super::Image;
-use crate::error::{Error, Result};
+use super::same_size;
+use crate::error::Result;
 
 /// How far `b` strays beyond the tolerance image.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -23,14 +24,8 @@ pub fn tolerance_check(
     tolerance: &Image,
     exposure: f32,
 ) -> Result<ToleranceCheck> {
-    for other in [b, tolerance] {
-        if (a.width, a.height) != (other.width, other.height) {
-            return Err(Error::SizeMismatch {
-                first: (a.width, a.height),
-                second: (other.width, other.height),
-            });
-        }
-    }
+    same_size(a, b)?;
+    same_size(a, tolerance)?;
     let mut check = ToleranceCheck {
         pixels_beyond: 0,
         largest_excess: 0.0,
