@@ -251,3 +251,29 @@ fn diff_writes_expected_difference_actual_side_by_side() {
         }
     }
 }
+
+/// The gradient is scaled so a black-to-white step measures 1: the grey-to-white
+/// step here (128 to 255) measures 127/255 = 0.498, so moved by a pixel it is left
+/// out under a threshold of 0.49 and counted under 0.50.
+#[test]
+fn the_edge_threshold_measures_a_full_step_as_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write(d, "a.png", 0..0, 16);
+    write(d, "b.png", 0..0, 17);
+    for (threshold, code) in [("0.49", 0), ("0.50", 1)] {
+        let run = lumiere(
+            &[
+                "compare",
+                "a.png",
+                "b.png",
+                "--ignore-edges",
+                threshold,
+                "--max-differing",
+                "0",
+            ],
+            d,
+        );
+        assert_eq!(run.code, code, "threshold {threshold}: {}", run.stdout);
+    }
+}
