@@ -449,4 +449,27 @@ pub struct GlobalSettings {
     pub analytic_spheres: bool,
     /// Whitted's ambient term I_a (radiance per unit diffuse reflectance).
     pub ambient: glam::Vec3,
+    /// Pass 2: the indirect light gathered from the solution at every visible
+    /// point instead of read from the mesh (`None`: read from the mesh).
+    pub final_gather: Option<FinalGatherSettings>,
+}
+
+/// The final gather over a radiosity solution (`[global.final_gather]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FinalGatherSettings {
+    /// Rays per gather, cut into Ward's M × N strata of the hemisphere (N ≈ πM).
+    pub rays: u32,
+    /// Ward's accuracy a of the irradiance cache: a record serves a point while
+    /// its error estimate ε stays under a (0: no cache, every sample gathers).
+    pub error: f64,
+    /// Ward's R is kept at least this fraction of the scene's size...
+    pub min_spacing: f64,
+    /// ...and at most this one.
+    pub max_spacing: f64,
+    /// Ward & Heckbert's gradients in the cache's interpolation.
+    pub gradients: bool,
+    /// Where a gather's ray lands, the polygon lights' direct light computed
+    /// there (a shadow ray per light) instead of read from the mesh, which then
+    /// supplies only the light that bounced more than once.
+    pub direct_at_hits: bool,
 }

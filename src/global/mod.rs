@@ -6,9 +6,16 @@
 //! - `two_pass`: the view-dependent second pass of Wallace, Cohen & Greenberg 1987
 //!   and of Rushmeier & Torrance 1990, rays from the eye off specular surfaces that
 //!   read the first pass's radiosity (`radiosity::windows` is the first pass's
-//!   extension through mirrors and panes).
+//!   extension through mirrors and panes);
+//! - `final_gather`: the view pass that gathers the indirect light from the
+//!   solution at visible points (Reichert 1992; Lischinski, Tampieri & Greenberg
+//!   1993), through `irradiance_cache` (Ward, Rubinstein & Clear 1988; Ward &
+//!   Heckbert 1992); `solution_radiance` reads the solution where rays land.
 
+pub mod final_gather;
+pub mod irradiance_cache;
 pub mod local;
+pub mod solution_radiance;
 pub mod traced_scene;
 pub mod two_pass;
 pub mod whitted;

@@ -22,16 +22,15 @@
 //!
 //! Choices left open: ideal mirrors, one ray each (the paper's reflection frustum
 //! for glossy surfaces is not built); panes are thin (the transmitted ray goes
-//! straight on); where a ray lands the solution is interpolated over the element's
-//! fan triangles (Gouraud on the screen interpolates along edges and spans; both
-//! agree on the element's edges) and textures are not applied.
+//! straight on); where a ray lands the solution is read as `SolutionRadiance` reads
+//! it, and textures are not applied.
 
 use super::local::lights_at;
+use super::solution_radiance::SolutionRadiance;
 use super::traced_scene::{Leaving, TracedScene};
 use crate::error::{Error, Result};
-use crate::radiosity::{Solution, display};
-use crate::scene::ray_queries::{contains, fan_weights};
-use crate::scene::{Polygon, Scene, Vertex};
+use crate::radiosity::Solution;
+use crate::scene::Scene;
 use crate::settings::{GlobalMethod, GlobalSettings};
 use glam::{DVec3, Vec3};
 use std::sync::Arc;
@@ -68,78 +67,6 @@ pub fn check(scene: &Scene, method: GlobalMethod) -> Result<()> {
     Ok(())
 }
 
-/// The solution's radiance B/π anywhere on the scene's polygons.
-pub struct SolutionRadiance {
-    /// Per scene polygon, its elements.
-    of_polygon: Vec<Vec<u32>>,
-    outlines: Vec<Polygon>,
-    colors: Vec<Vec<Vec3>>,
-}
-
-impl SolutionRadiance {
-    pub fn new(scene: &Scene, solution: &Solution) -> SolutionRadiance {
-        let pieces =
-            display::element_polygons(scene, &solution.mesh, &solution.elements, solution.display);
-        let mut of_polygon = vec![Vec::new(); scene.polygons.len()];
-        let mut outlines = Vec::with_capacity(pieces.len());
-        let mut colors = Vec::with_capacity(pieces.len());
-        for (e, piece) in pieces.into_iter().enumerate() {
-            of_polygon[piece.polygon].push(e as u32);
-            let normal = scene.polygons[piece.polygon].normal;
-            outlines.push(Polygon {
-                vertices: piece
-                    .vertices
-                    .iter()
-                    .map(|v| Vertex {
-                        position: v.position,
-                        ..*v
-                    })
-                    .collect(),
-                normal,
-                material: 0,
-                object: 0,
-            });
-            colors.push(piece.colors);
-        }
-        SolutionRadiance {
-            of_polygon,
-            outlines,
-            colors,
-        }
-    }
-
-    /// Radiance leaving the front of polygon `polygon` at `position`.
-    pub fn at(&self, polygon: u32, position: DVec3) -> Vec3 {
-        let elements = &self.of_polygon[polygon as usize];
-        let Some(&e) = elements
-            .iter()
-            .find(|&&e| contains(&self.outlines[e as usize], position))
-            .or_else(|| {
-                // On an edge, where rounding leaves the point in no element: the
-                // nearest element by its first corner is close enough.
-                elements.iter().min_by(|&&a, &&b| {
-                    let d = |e: u32| {
-                        (self.outlines[e as usize].vertices[0].position - position).length()
-                    };
-                    d(a).total_cmp(&d(b))
-                })
-            })
-        else {
-            return Vec3::ZERO;
-        };
-        let outline = &self.outlines[e as usize];
-        let colors = &self.colors[e as usize];
-        let v = &outline.vertices;
-        match fan_weights(v.len(), |k| v[k].position, outline.normal, position) {
-            Some((i, w)) => {
-                (colors[0] * w[0] as f32 + colors[i] * w[1] as f32 + colors[i + 1] * w[2] as f32)
-                    .max(Vec3::ZERO)
-            }
-            None => colors[0],
-        }
-    }
-}
-
 /// The second pass over one solution.
 pub struct SecondPass {
     traced: Arc<TracedScene>,
@@ -159,7 +86,12 @@ impl SecondPass {
     ) -> SecondPass {
         SecondPass {
             traced,
-            radiance: SolutionRadiance::new(scene, solution),
+            radiance: SolutionRadiance::new(
+                scene,
+                &solution.mesh,
+                &solution.elements,
+                solution.display,
+            ),
             settings,
             lit,
         }

@@ -154,7 +154,10 @@ fn catalogue(scene: &Scene, plan: &FramePlan) -> (Vec<Kind>, Vec<Buffer>) {
             }
         }
     }
-    if let Integrator::Radiosity(solution, _) = integrator {
+    if let Integrator::Radiosity(_, _, Some(gather)) = integrator {
+        fixed.push(cache_records(scene, &gather.cache));
+    }
+    if let Integrator::Radiosity(solution, ..) = integrator {
         fixed.extend(hemicube_buffers(
             scene,
             plan.hemicube_element,
@@ -198,10 +201,39 @@ fn hemicube_buffers(scene: &Scene, element: usize, mesh: &crate::radiosity::Mesh
         .collect()
 }
 
+/// Where the irradiance cache's records were gathered: per pixel of the image, the
+/// number of records made at its centre (Ward's sparse gathers, denser near
+/// surfaces that meet).
+fn cache_records(
+    scene: &Scene,
+    cache: &crate::global::irradiance_cache::IrradianceCache,
+) -> Buffer {
+    let (width, height) = (scene.camera.width, scene.camera.height);
+    let mut counts = vec![0; width as usize * height as usize];
+    for r in &cache.records {
+        let (x, y) = r.pixel;
+        if x < width && y < height {
+            counts[y as usize * width as usize + x as usize] += 1;
+        }
+    }
+    Buffer {
+        name: CACHE_RECORDS.into(),
+        width,
+        height,
+        data: BufferData::Counts(counts),
+    }
+}
+
+/// The name of the irradiance cache's buffer.
+const CACHE_RECORDS: &str = "irradiance-cache";
+
 /// What a fixed buffer is, for `--aov list`.
 fn fixed_description(name: &str) -> String {
     if let Some(rest) = name.strip_prefix("shadow-map-") {
         format!("shadow-map depth image of light and cube face {rest} (linear)")
+    } else if name == CACHE_RECORDS {
+        "the irradiance cache's records: where Ward's gathers were made, per pixel (colour-mapped)"
+            .into()
     } else if let Some(face) = name.strip_prefix("hemicube-") {
         format!("hemi-cube item buffer, {face} face, at the chosen element (patch ids)")
     } else {
@@ -347,7 +379,7 @@ impl FrameBuffers {
                                     .to_array(),
                             ),
                             Kind::Radiosity => data.extend(match integrator {
-                                Integrator::Radiosity(solution, _) if !empty => {
+                                Integrator::Radiosity(solution, ..) if !empty => {
                                     solution.elements[s.element as usize].to_array()
                                 }
                                 _ => [0.0; 3],

@@ -18,21 +18,28 @@
 //! become radiance. The renderer alone chooses the integrator (`Renderer::plan`).
 
 use crate::global::TracedScene;
+use crate::global::irradiance_cache::ViewGather;
 use crate::global::two_pass::SecondPass;
 use crate::radiosity::{Solution, display};
 use crate::raster::{ScreenPolygon, ToPrepare, View, Visibility, VisibleSurface, prepare};
 use crate::scene::{Light, Scene, ShadingMode};
 use crate::settings::GlobalSettings;
 use crate::shading::{FrameShading, radiance_at, vertex_colors};
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use rayon::prelude::*;
+use std::f32::consts::PI;
 use std::sync::Arc;
 
 #[derive(Clone)]
 pub enum Integrator {
     Direct,
-    /// With the second pass of the two-pass method (rays off specular surfaces).
-    Radiosity(Arc<Solution>, Option<Arc<SecondPass>>),
+    /// With the second pass of the two-pass method (rays off specular surfaces),
+    /// and the final gather with this view's irradiance cache.
+    Radiosity(
+        Arc<Solution>,
+        Option<Arc<SecondPass>>,
+        Option<Arc<ViewGather>>,
+    ),
     /// Whitted's ray tracer over the scene as rays see it, with its settings.
     Whitted(Arc<TracedScene>, GlobalSettings),
 }
@@ -84,7 +91,7 @@ impl Integrator {
         let only: Vec<bool> = (0..scene.lights.len()).map(|m| m == l).collect();
         match self {
             Integrator::Direct => self.draw_list(scene, view, &only),
-            Integrator::Radiosity(solution, _) => {
+            Integrator::Radiosity(solution, ..) => {
                 let pieces = elements(scene, solution);
                 let colors: Vec<Vec<Vec3>> = pieces
                     .par_iter()
@@ -138,7 +145,7 @@ impl Integrator {
                         }),
                 )
             }
-            Integrator::Radiosity(solution, _) => {
+            Integrator::Radiosity(solution, ..) => {
                 let pieces = elements(scene, solution);
                 prepare(
                     view,
@@ -166,7 +173,7 @@ impl Integrator {
     ) -> Vec<Vec3> {
         match self {
             Integrator::Direct => shading.shade_band(band, visibility, gouraud),
-            Integrator::Radiosity(_, second) => (0..band.samples.len())
+            Integrator::Radiosity(_, second, gather) => (0..band.samples.len())
                 .into_par_iter()
                 .map(|k| {
                     let s = &band.samples[k];
@@ -178,10 +185,16 @@ impl Integrator {
                     if !shading.front(band, k) {
                         return Vec3::ZERO;
                     }
-                    let emitted = scene.material_of(s.polygon as usize).emission;
-                    let solved = match shading.diffuse_texture_scale(band, k) {
-                        Some(scale) => emitted + (s.color - emitted) * scale,
-                        None => s.color,
+                    let material = scene.material_of(s.polygon as usize);
+                    let emitted = material.emission;
+                    let scale = shading.diffuse_texture_scale(band, k);
+                    let solved = match (gather, scale) {
+                        (Some(gather), _) => {
+                            let diffuse = material.diffuse * scale.unwrap_or(Vec3::ONE);
+                            emitted + diffuse * gathered_at(shading, gather, band, k) / PI
+                        }
+                        (None, Some(scale)) => emitted + (s.color - emitted) * scale,
+                        (None, None) => s.color,
                     };
                     let mut radiance = solved
                         + shading.lit(band, k, visibility, gouraud)
@@ -199,17 +212,30 @@ impl Integrator {
     }
 }
 
-/// The second pass at a visible sample of a specular surface.
-fn second_pass_at(
+/// The indirect irradiance the final gather finds at sample `k`.
+fn gathered_at(
     shading: &FrameShading,
-    second: &SecondPass,
+    gather: &ViewGather,
     band: &VisibleSurface,
     k: usize,
 ) -> Vec3 {
+    let (normal, _) = eye_side_normal(shading, band, k);
+    let s = &band.samples[k];
+    gather.irradiance(
+        shading.scene(),
+        s.polygon,
+        s.position,
+        normal,
+        sample_stream(band, k),
+    )
+}
+
+/// Sample `k`'s unit shading normal turned to the eye's side, and the unit
+/// direction from the eye to it.
+fn eye_side_normal(shading: &FrameShading, band: &VisibleSurface, k: usize) -> (DVec3, DVec3) {
     let scene = shading.scene();
     let s = &band.samples[k];
-    let position = s.position;
-    let incident = (position - shading.eye()).normalize();
+    let incident = (s.position - shading.eye()).normalize();
     let mut normal = s
         .normal
         .as_dvec3()
@@ -217,9 +243,33 @@ fn second_pass_at(
     if normal.dot(incident) > 0.0 {
         normal = -normal;
     }
+    (normal, incident)
+}
+
+/// Sample `k`'s index in the frame's sample grid: the stream its rays draw from.
+fn sample_stream(band: &VisibleSurface, k: usize) -> u64 {
     let (x, y) = band.position_of(k);
-    let stream = y as u64 * band.width as u64 + x as u64;
-    second.specular(scene, s.polygon, position, normal, incident, stream)
+    y as u64 * band.width as u64 + x as u64
+}
+
+/// The second pass at a visible sample of a specular surface.
+fn second_pass_at(
+    shading: &FrameShading,
+    second: &SecondPass,
+    band: &VisibleSurface,
+    k: usize,
+) -> Vec3 {
+    let s = &band.samples[k];
+    let (normal, incident) = eye_side_normal(shading, band, k);
+    let stream = sample_stream(band, k);
+    second.specular(
+        shading.scene(),
+        s.polygon,
+        s.position,
+        normal,
+        incident,
+        stream,
+    )
 }
 
 /// Per light, whether shading adds it directly: every light, but under radiosity

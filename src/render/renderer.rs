@@ -15,6 +15,8 @@ use super::plan::{EnvironmentMaps, FramePlan};
 use super::ray_traced;
 use crate::error::{Error, Result};
 use crate::global::TracedScene;
+use crate::global::final_gather::FinalGather;
+use crate::global::irradiance_cache::{IrradianceCache, ViewGather};
 use crate::global::two_pass::{self, SecondPass};
 use crate::image_io::Image;
 use crate::radiosity::{self, Solution};
@@ -48,6 +50,9 @@ pub struct Renderer {
     radiosity: Mutex<Option<Arc<Solution>>>,
     /// The two-pass method's second pass over that solution.
     second_pass: Mutex<Option<Arc<SecondPass>>>,
+    /// The final gather over the whole solution (made with it, before its direct
+    /// part is taken out for display).
+    final_gather: Mutex<Option<Arc<FinalGather>>>,
     environments: Mutex<Option<EnvironmentMaps>>,
     /// The scene for rays (polygons, and spheres as quadrics or not).
     traced: Mutex<Option<(bool, Arc<TracedScene>)>>,
@@ -71,6 +76,7 @@ impl Renderer {
             occluders: Mutex::new(None),
             radiosity: Mutex::new(None),
             second_pass: Mutex::new(None),
+            final_gather: Mutex::new(None),
             environments: Mutex::new(None),
             traced: Mutex::new(None),
             captures: true,
@@ -217,6 +223,7 @@ impl Renderer {
     /// Hands the renderer a radiosity solution of its scene (solved elsewhere, with
     /// progress shown, say), so that it is not solved again.
     pub fn set_radiosity_solution(&mut self, solution: Arc<Solution>) {
+        *self.final_gather.lock().expect("no poisoned lock") = self.final_gather_over(&solution);
         let solution = match (exact_direct(&self.scene), solution.indirect()) {
             (true, Some(indirect)) => Arc::new(indirect),
             _ => solution,
@@ -351,6 +358,8 @@ impl Renderer {
                     }
                     let solution = radiosity::solve(&self.scene, settings, &mut |_, _| {})?;
                     self.built_radiosity.fetch_add(1, Ordering::Relaxed);
+                    *self.final_gather.lock().expect("no poisoned lock") =
+                        self.final_gather_over(&solution);
                     let solution = Arc::new(self.drawn(solution)?);
                     *slot = Some(solution.clone());
                     solution
@@ -358,7 +367,7 @@ impl Renderer {
             }
         };
         let Some(g) = second_pass else {
-            return Ok(Integrator::Radiosity(solution, None));
+            return Ok(Integrator::Radiosity(solution, None, None));
         };
         let mut slot = self.second_pass.lock().expect("no poisoned lock");
         let second = match slot.as_ref() {
@@ -378,7 +387,29 @@ impl Renderer {
                 second
             }
         };
-        Ok(Integrator::Radiosity(solution, Some(second)))
+        let gather = self.final_gather.lock().expect("no poisoned lock").clone();
+        let view_gather = gather.map(|gather| {
+            let view = crate::raster::View::new(
+                &self.scene.camera,
+                self.scene.camera.width,
+                self.scene.camera.height,
+            );
+            let cache = IrradianceCache::sweep(&self.scene, &gather, &view);
+            Arc::new(ViewGather { gather, cache })
+        });
+        Ok(Integrator::Radiosity(solution, Some(second), view_gather))
+    }
+
+    /// The final gather `[global.final_gather]` asks for, over `solution` (whole).
+    fn final_gather_over(&self, solution: &Solution) -> Option<Arc<FinalGather>> {
+        let settings = second_pass(&self.scene)?.final_gather?;
+        let traced = self.traced_scene(false);
+        Some(Arc::new(FinalGather::new(
+            &self.scene,
+            solution,
+            traced,
+            settings,
+        )))
     }
 
     /// The solution as frames draw it: without its direct part when the second pass

@@ -193,6 +193,39 @@ pub struct GlobalFile {
     pub analytic_spheres: bool,
     #[serde(default)]
     pub ambient: Vec3File,
+    pub final_gather: Option<FinalGatherFile>,
+}
+
+/// `[global.final_gather]`: the view pass gathers the indirect light from the
+/// solution (Reichert 1992), through Ward's irradiance cache.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FinalGatherFile {
+    #[serde(default = "gather_rays")]
+    pub rays: u32,
+    #[serde(default = "gather_error")]
+    pub error: f64,
+    #[serde(default = "gather_min_spacing")]
+    pub min_spacing: f64,
+    #[serde(default = "gather_max_spacing")]
+    pub max_spacing: f64,
+    #[serde(default = "yes")]
+    pub gradients: bool,
+    #[serde(default)]
+    pub direct_at_hits: bool,
+}
+
+fn gather_rays() -> u32 {
+    1024
+}
+fn gather_error() -> f64 {
+    0.15
+}
+fn gather_min_spacing() -> f64 {
+    0.005
+}
+fn gather_max_spacing() -> f64 {
+    0.25
 }
 
 /// One of the four transfer mechanisms, as `[global] mechanisms` names it.

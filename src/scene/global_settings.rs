@@ -1,10 +1,10 @@
 //! `[global]` from the file, checked.
 
-use super::file::{GlobalFile, MechanismFile};
+use super::file::{FinalGatherFile, GlobalFile, MechanismFile};
 use super::validate::colour;
 use crate::error::Result;
 use crate::error::ensure_valid;
-use crate::settings::{GlobalMethod, GlobalSettings as Settings, Mechanisms};
+use crate::settings::{FinalGatherSettings, GlobalMethod, GlobalSettings as Settings, Mechanisms};
 
 /// The longest ray tree `depth` allows: rays grow as 2^depth under glass.
 pub const MAX_DEPTH: u32 = 16;
@@ -12,6 +12,8 @@ pub const MAX_DEPTH: u32 = 16;
 pub const MAX_SUBDIVISIONS: u32 = 6;
 /// Mirror-of-mirror paths: each level renders a virtual environment per window.
 pub const MAX_WINDOW_DEPTH: u32 = 4;
+/// Rays of one final gather: 2²⁰ is a thousand times a usual gather.
+pub const MAX_GATHER_RAYS: u32 = 1 << 20;
 /// Mirror-of-mirror levels when the scene gives none.
 const DEFAULT_WINDOW_DEPTH: u32 = 2;
 
@@ -68,6 +70,17 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
             specular_specular: list.contains(&MechanismFile::SpecularSpecular),
         },
     };
+    let final_gather = match &g.final_gather {
+        None => None,
+        Some(f) => {
+            ensure_valid!(
+                g.method.reads_radiosity() && g.exact_direct,
+                "global.final_gather",
+                "global.final_gather gathers the indirect light from a radiosity solution beside the exact direct light: it needs a two-pass method and global.exact_direct = true"
+            );
+            Some(final_gather(f)?)
+        }
+    };
     Ok(Settings {
         method: g.method,
         depth: g.depth,
@@ -80,5 +93,42 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         exact_direct: g.exact_direct,
         analytic_spheres: g.analytic_spheres,
         ambient: colour("global.ambient", g.ambient)?,
+        final_gather,
+    })
+}
+
+fn final_gather(f: &FinalGatherFile) -> Result<FinalGatherSettings> {
+    ensure_valid!(
+        (1..=MAX_GATHER_RAYS).contains(&f.rays),
+        "global.final_gather.rays",
+        "global.final_gather.rays must be from 1 to {MAX_GATHER_RAYS}, got {}",
+        f.rays
+    );
+    ensure_valid!(
+        f.error.is_finite() && (0.0..=1.0).contains(&f.error),
+        "global.final_gather.error",
+        "global.final_gather.error (Ward's accuracy a) must be from 0 to 1, got {}",
+        f.error
+    );
+    ensure_valid!(
+        f.min_spacing.is_finite() && f.min_spacing > 0.0 && f.min_spacing <= 1.0,
+        "global.final_gather.min_spacing",
+        "global.final_gather.min_spacing must be a fraction of the scene's size above 0 and at most 1, got {}",
+        f.min_spacing
+    );
+    ensure_valid!(
+        f.max_spacing.is_finite() && f.max_spacing >= f.min_spacing && f.max_spacing <= 1.0,
+        "global.final_gather.max_spacing",
+        "global.final_gather.max_spacing must be a fraction of the scene's size from min_spacing ({}) to 1, got {}",
+        f.min_spacing,
+        f.max_spacing
+    );
+    Ok(FinalGatherSettings {
+        rays: f.rays,
+        error: f.error,
+        min_spacing: f.min_spacing,
+        max_spacing: f.max_spacing,
+        gradients: f.gradients,
+        direct_at_hits: f.direct_at_hits,
     })
 }
