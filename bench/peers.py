@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """The peer benchmark behind bench/peers.sh: see that script, and BENCHMARKS.md for
 what it writes. Every scene is exported by `lumiere export`, so the three renderers
-see the same camera, geometry, materials and lights."""
+see the same camera, geometry, materials and lights. Mitsuba runs in two variants:
+scalar_rgb (one ray at a time) and llvm_ad_rgb (JIT-compiled, vectorised over the
+CPU's SIMD lanes), the latter at several sample counts. bench/global_convergence.py
+imports this file for its exports, timings and measures."""
 
 import argparse
 import math
@@ -23,6 +26,10 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LUMIERE = os.path.join(ROOT, "target", "release", "lumiere")
 mi.set_variant("scalar_rgb")
 
+# Mitsuba's JIT-vectorised CPU variant, and the sample counts it is timed at: where
+# its cost per sample goes and how its error falls, beside scalar_rgb's 16.
+LLVM = "llvm_ad_rgb"
+LLVM_SPP = [16, 64, 256]
 
 # A growth run longer than this is stopped and shown as "> LIMIT s".
 LIMIT = 120
@@ -75,10 +82,35 @@ def quality(reference, test):
     return float(mean), float(np.sqrt(np.mean((a - b) ** 2)))
 
 
+# The variant and the sampler's seed are arguments: one script for both variants,
+# and a reference can be rendered with a seed that no timed render uses.
 MITSUBA_RENDER = (
-    "import mitsuba as mi, sys\nmi.set_variant('scalar_rgb')\n"
-    "mi.util.write_bitmap(sys.argv[2], mi.render(mi.load_file(sys.argv[1])))\n"
+    "import mitsuba as mi, sys\nmi.set_variant(sys.argv[3])\n"
+    "mi.util.write_bitmap(sys.argv[2], mi.render(mi.load_file(sys.argv[1]), seed=int(sys.argv[4])))\n"
 )
+
+
+def libllvm():
+    """The LLVM library that Mitsuba's llvm variants load: DRJIT_LIBLLVM_PATH when set,
+    else Debian's libLLVM-19.so (libllvm19, installed by tools/install-peers.sh; its
+    folder is the machine's multiarch one, so dpkg is asked where)."""
+    if os.environ.get("DRJIT_LIBLLVM_PATH"):
+        return os.environ["DRJIT_LIBLLVM_PATH"]
+    listed = subprocess.run(["dpkg", "-L", "libllvm19"], capture_output=True, text=True).stdout.split()
+    path = next((p for p in listed if p.endswith("/libLLVM-19.so")), None)
+    if path is None:
+        sys.exit("Debian's libllvm19 is missing (Mitsuba's llvm variants need it): run tools/install-peers.sh")
+    return path
+
+
+def mitsuba(xml, exr, variant="scalar_rgb", seed=0):
+    """The command rendering `xml` to `exr`. An llvm variant is given the library
+    through `env` in the command itself, so that the timed process (env execs Python:
+    no process of its own) is the one a user runs."""
+    command = [sys.executable, "-c", MITSUBA_RENDER, xml, exr, variant, str(seed)]
+    if variant.startswith("llvm"):
+        command = ["env", f"DRJIT_LIBLLVM_PATH={libllvm()}"] + command
+    return command
 
 
 class Bench:
@@ -101,9 +133,6 @@ class Bench:
             words += ["--set", s]
         subprocess.run(self.lumiere(*words), cwd=self.work, check=True, capture_output=True)
 
-    def mitsuba(self, xml, exr):
-        return [sys.executable, "-c", MITSUBA_RENDER, xml, exr]
-
     def povray(self, pov, exr):
         # 4 x 4 samples in every pixel (non-adaptive), linear half-float EXR.
         return ["povray", f"+I{pov}", f"+O{exr}", f"+W{self.size}", f"+H{self.size}", "+FE",
@@ -115,7 +144,7 @@ class Bench:
         tag = re.sub(r"[^a-z0-9]+", "-", title.lower()).strip("-")
         reference = f"{tag}-reference.exr"
         self.export(scene, "mitsuba", f"{tag}-reference.xml", sets, self.reference_spp, integrator)
-        run(self.mitsuba(f"{tag}-reference.xml", reference), self.work)
+        run(mitsuba(f"{tag}-reference.xml", reference), self.work)
         rows = []
         for label, words in methods:
             out = f"{tag}-{len(rows)}.exr"
@@ -134,8 +163,16 @@ class Bench:
         self.export(scene, "mitsuba", f"{tag}-16.xml", sets, 16, integrator)
         out = f"{tag}-mitsuba.exr"
         rows.append(("Mitsuba 3 (scalar_rgb), 16 samples per pixel",
-                     *timed(self.mitsuba(f"{tag}-16.xml", out), self.work, self.runs),
+                     *timed(mitsuba(f"{tag}-16.xml", out), self.work, self.runs),
                      *quality(os.path.join(self.work, reference), os.path.join(self.work, out))))
+        # The JIT variant, timed like every row: its first run on a scene may compile
+        # kernels (kept in ~/.drjit), what a user pays once; the median is a warm run.
+        for spp in LLVM_SPP:
+            self.export(scene, "mitsuba", f"{tag}-{spp}.xml", sets, spp, integrator)
+            out = f"{tag}-{LLVM}-{spp}.exr"
+            rows.append((f"Mitsuba 3 ({LLVM}), {spp} samples per pixel",
+                         *timed(mitsuba(f"{tag}-{spp}.xml", out, LLVM), self.work, self.runs),
+                         *quality(os.path.join(self.work, reference), os.path.join(self.work, out))))
         self.rows.append((title, scene, sets, rows))
         return rows
 
@@ -217,7 +254,12 @@ def main():
                 [("umbra-penumbra (exact), 4 x 4", ["--shadows", "umbra-penumbra", *ss4]),
                  ("ray-cast, 4 x 4 light samples, 4 x 4", ["--shadows", "ray-cast", *ss4])])
     bench.scene("The diffuse Cornell box, every bounce", "cornell-box-global", [],
-                [("cornell-box-global (radiosity, exact direct), 2 x 2", ["--supersample", "2"])],
+                [("cornell-box-global (radiosity, exact direct), 2 x 2", ["--supersample", "2"]),
+                 # irradiance-caching's settings over the same scene, as the export has it.
+                 ("final gather through Ward's irradiance cache (irradiance-caching), 2 x 2",
+                  ["--supersample", "2", "--set", "radiosity.ambient=true",
+                   "--set", "global.final_gather.rays=1024", "--set", "global.final_gather.error=0.15",
+                   "--set", "global.final_gather.direct_at_hits=true"])],
                 pov=False, integrator="path")
     # The peers have no background colour (an environment would light the scene) and
     # no Phong lobe: the curved scene is compared without either.
@@ -278,7 +320,12 @@ def write(args, bench, point, curved, growth):
            f"- machine: {cpu}, {os.cpu_count()} cores, {platform.system()} {platform.release()}",
            f"- renderers: {lum}; {pov}; {mts}",
            f"- images: {args.size} x {args.size}; {args.runs} runs each; references {args.reference_spp} "
-           "samples per pixel", ""]
+           "samples per pixel",
+           f"- Mitsuba {LLVM}: LLVM from {libllvm()}; the kernels it compiles on first use are kept in "
+           "~/.drjit, so the cache is warm after the first run of each row (the median is a warm run; the "
+           "slowest may include compiling, once per machine)"
+           + (f"; the references have no more samples than its {max(LLVM_SPP)} samples per pixel: there its "
+              "FLIP is mostly the reference's own noise" if args.reference_spp <= max(LLVM_SPP) else ""), ""]
     for title, scene, sets, rows in bench.rows:
         out += [f"## {title}", "", f"`{scene}`" + (f" with {' '.join(sets)}" if sets else ""), "",
                 "| renderer | time (median; fastest-slowest) | peak memory | FLIP | RMSE |", "|---|---|---|---|---|"]

@@ -202,9 +202,9 @@ fn exact_direct_light_brings_the_global_cornell_box_closer_to_a_path_tracer() {
 
 /// The final gather through Ward's irradiance cache (`irradiance-caching`) against
 /// the same reference: measured 0.0245 at 256 x 256, 4 x 4 (the two-pass way on
-/// the mesh, 0.050). The issue asked 0.02: what remains is light bounced twice
-/// near creases (the box's foot on the floor), read from the 35 mm mesh where the
-/// gather's rays land (see docs/topics/global-illumination.md).
+/// the mesh, 0.050). The target is 0.02: what remains comes from the solution the
+/// gather reads (about 1% dark over the walls, and its light bounced twice near
+/// creases, read from 35 mm elements); see docs/topics/global-illumination.md.
 #[test]
 fn the_final_gather_brings_the_global_cornell_box_within_0_027_of_a_path_tracer() {
     let cached = global_flip("irradiance-caching");
