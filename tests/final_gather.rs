@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::{error_line, scene_from_text};
+use common::{error_line, polygon, scene_from_text};
 use glam::{DVec3, Vec3};
 use lumiere::internals::geometry::sampling::Stream;
 use lumiere::internals::global::TracedScene;
@@ -18,22 +18,6 @@ use lumiere::internals::radiosity;
 use lumiere::{Renderer, Scene};
 use std::f64::consts::PI;
 use std::sync::Arc;
-
-/// A polygon object whose vertices are ordered so that its normal is `facing`.
-fn polygon(name: &str, material: &str, corners: [DVec3; 4], facing: DVec3) -> String {
-    let mut c = corners.to_vec();
-    if (c[1] - c[0]).cross(c[2] - c[1]).dot(facing) < 0.0 {
-        c.reverse();
-    }
-    let list: Vec<String> = c
-        .iter()
-        .map(|p| format!("[{}, {}, {}]", p.x, p.y, p.z))
-        .collect();
-    format!(
-        "[[objects]]\nshape = \"polygon\"\nname = \"{name}\"\nmaterial = \"{material}\"\nvertices = [{}]\n\n",
-        list.join(", ")
-    )
-}
 
 /// The square [0, 1]² of the plane `axis` = `at` (axis 0: x, 1: y, 2: z).
 fn square(axis: usize, at: f64) -> [DVec3; 4] {

@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::scene_from_text;
+use common::{polygon, scene_from_text};
 use glam::DVec3;
 use lumiere::internals::geometry::lambert_contour::form_factor;
 use lumiere::internals::radiosity::extended::{self, Extension};
@@ -18,23 +18,6 @@ use lumiere::internals::radiosity::windows::{Follow, Windows};
 use lumiere::internals::radiosity::{Division, Estimator, FormFactorMethod, Mesh};
 use lumiere::settings::Mechanisms;
 use lumiere::{Scene, render};
-
-/// A polygon object whose vertices are ordered so that its normal is `facing`.
-fn polygon(name: &str, material: &str, corners: [DVec3; 4], facing: DVec3) -> String {
-    let mut c = corners.to_vec();
-    let normal = (c[1] - c[0]).cross(c[2] - c[1]);
-    if normal.dot(facing) < 0.0 {
-        c.reverse();
-    }
-    let list: Vec<String> = c
-        .iter()
-        .map(|p| format!("[{}, {}, {}]", p.x, p.y, p.z))
-        .collect();
-    format!(
-        "[[objects]]\nshape = \"polygon\"\nname = \"{name}\"\nmaterial = \"{material}\"\nvertices = [{}]\n\n",
-        list.join(", ")
-    )
-}
 
 /// The axis-aligned rectangle with corners `a` and `b` (equal in one coordinate).
 fn rectangle(a: DVec3, b: DVec3) -> [DVec3; 4] {

@@ -60,3 +60,21 @@ pub fn scene_from_text(text: &str, sets: &[String]) -> lumiere::Scene {
     lumiere::load_scene(path.to_str().unwrap(), sets)
         .unwrap_or_else(|e| panic!("{}", error_line(&e)))
 }
+
+/// A scene-file polygon object whose vertices are ordered so that its normal is
+/// `facing`.
+pub fn polygon(name: &str, material: &str, corners: [DVec3; 4], facing: DVec3) -> String {
+    let mut c = corners.to_vec();
+    let normal = (c[1] - c[0]).cross(c[2] - c[1]);
+    if normal.dot(facing) < 0.0 {
+        c.reverse();
+    }
+    let list: Vec<String> = c
+        .iter()
+        .map(|p| format!("[{}, {}, {}]", p.x, p.y, p.z))
+        .collect();
+    format!(
+        "[[objects]]\nshape = \"polygon\"\nname = \"{name}\"\nmaterial = \"{material}\"\nvertices = [{}]\n\n",
+        list.join(", ")
+    )
+}
