@@ -27,7 +27,12 @@
 //! the levels before it and gathered in parallel (so the cache does not depend on
 //! the order of threads), then the image's samples only read the cache, and a
 //! sample no record serves gathers for itself. R_i is kept between two fractions of
-//! the scene's size (Ward bounded it too); each extrapolated term is kept ≥ 0.
+//! the scene's size (Ward bounded it too), and no less than two pixels' width at
+//! the record over a, so that a record serves its own pixel's samples and its
+//! neighbours' (the
+//! screen-space bound of Tabellion & Lamorlette 2004: near a crease R_i falls to
+//! nothing, and every sample there would gather for itself); each extrapolated
+//! term is kept ≥ 0.
 
 use super::final_gather::{FinalGather, Gathered};
 use super::traced_scene::Leaving;
@@ -171,11 +176,15 @@ impl IrradianceCache {
                     }
                     let stream = RECORD_STREAMS + y as u64 * width as u64 + x as u64;
                     let gathered = gather.gather(scene, polygon, hit.position, normal, stream);
+                    // A record reaches at least the pixels beside its own: its R
+                    // no less than two pixels' width there over a.
+                    let pixel = hit.t / view.ray(x as f64 + 0.5, y as f64 + 0.5).length();
+                    let least = lowest.max(2.0 * pixel / settings.error).min(highest);
                     Some(Record {
                         position: hit.position,
                         normal,
                         gathered,
-                        radius: gathered.harmonic_distance.clamp(lowest, highest),
+                        radius: gathered.harmonic_distance.clamp(least, highest),
                         pixel: (x, y),
                     })
                 })

@@ -191,7 +191,13 @@ impl Integrator {
                     let solved = match (gather, scale) {
                         (Some(gather), _) => {
                             let diffuse = material.diffuse * scale.unwrap_or(Vec3::ONE);
-                            emitted + diffuse * gathered_at(shading, gather, band, k) / PI
+                            // A surface that reflects nothing diffusely (a lamp)
+                            // needs no gather.
+                            if diffuse.max_element() > 0.0 {
+                                emitted + diffuse * gathered_at(shading, gather, band, k) / PI
+                            } else {
+                                emitted
+                            }
                         }
                         (None, Some(scale)) => emitted + (s.color - emitted) * scale,
                         (None, None) => s.color,
