@@ -32,6 +32,7 @@
 
 use super::solution_radiance::SolutionRadiance;
 use super::traced_scene::{Leaving, SurfaceHit, TracedScene};
+use crate::geometry::bvh::Aabb;
 use crate::geometry::sampling::Stream;
 use crate::radiosity::Solution;
 use crate::scene::{Light, Reflectance, Scene};
@@ -211,12 +212,12 @@ pub struct FinalGather {
     reflected: SolutionRadiance,
     /// The polygon lights, whose direct light is computed where rays land when
     /// the settings ask it.
-    lights: Vec<(usize, Light)>,
+    lights: Vec<Light>,
     pub settings: FinalGatherSettings,
     pub strata: Strata,
-    /// The scene's size (its bounding box's diagonal), which the cache's
-    /// spacings are fractions of.
-    pub scene_size: f64,
+    /// The scene's bounds: the cache's octree covers them, and its spacings are
+    /// fractions of their diagonal.
+    pub bounds: Aabb,
 }
 
 impl FinalGather {
@@ -224,9 +225,12 @@ impl FinalGather {
     pub fn traced(&self) -> &TracedScene {
         &self.traced
     }
-}
 
-impl FinalGather {
+    /// The scene's size: its bounding box's diagonal.
+    pub fn scene_size(&self) -> f64 {
+        (self.bounds.max - self.bounds.min).length()
+    }
+
     /// The gather over `solution` (the whole solution, its direct part included:
     /// what a surface received straight from the lamp is indirect light for the
     /// points it lights).
@@ -251,19 +255,16 @@ impl FinalGather {
         let lights = scene
             .lights
             .iter()
-            .enumerate()
-            .filter(|(_, l)| direct.is_some() && matches!(l, Light::Polygon(_)))
-            .map(|(i, l)| (i, l.clone()))
+            .filter(|l| direct.is_some() && matches!(l, Light::Polygon(_)))
+            .cloned()
             .collect();
-        let bounds =
-            crate::geometry::bvh::Aabb::of(scene.polygons.iter().flat_map(|p| p.positions()));
         FinalGather {
             traced,
             reflected: SolutionRadiance::new(scene, mesh, &reflected, solution.display),
             lights,
             strata: Strata::for_rays(settings.rays),
             settings,
-            scene_size: (bounds.max - bounds.min).length(),
+            bounds: Aabb::of(scene.polygons.iter().flat_map(|p| p.positions())),
         }
     }
 
@@ -296,9 +297,7 @@ impl FinalGather {
             },
         )
     }
-}
 
-impl FinalGather {
     /// The direct light a hit reflects back along the ray, from the polygon
     /// lights, each shadowed by one shadow ray to a uniform point of it (the
     /// gather's many rays average the shadow rays' noise).
@@ -329,7 +328,7 @@ impl FinalGather {
             to_eye: -direction,
         };
         let mut total = Vec3::ZERO;
-        for (_, light) in &self.lights {
+        for light in &self.lights {
             let unshadowed = reflected(&point, &reflectance, light);
             if unshadowed == Vec3::ZERO {
                 continue;

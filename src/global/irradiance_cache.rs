@@ -135,14 +135,13 @@ impl IrradianceCache {
     pub fn sweep(scene: &Scene, gather: &FinalGather, view: &View) -> IrradianceCache {
         let traced = gather.traced();
         let settings = gather.settings;
-        let bounds = Aabb::of(scene.polygons.iter().flat_map(|p| p.positions()));
-        let mut cache = IrradianceCache::new(bounds, settings.error, settings.gradients);
+        let mut cache = IrradianceCache::new(gather.bounds, settings.error, settings.gradients);
         if settings.error <= 0.0 {
             return cache;
         }
         let (lowest, highest) = (
-            settings.min_spacing * gather.scene_size,
-            settings.max_spacing * gather.scene_size,
+            settings.min_spacing * gather.scene_size(),
+            settings.max_spacing * gather.scene_size(),
         );
         let (width, height) = (view.width, view.height);
         let mut step = COARSEST.min(width.max(height).next_power_of_two());
