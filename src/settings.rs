@@ -439,6 +439,9 @@ pub struct GlobalSettings {
     pub weights: SpecularWeights,
     /// Pass 1: mirror-of-mirror (and pane) paths followed to this depth.
     pub window_depth: u32,
+    /// Pass 2: cells along each side of the reflection frustum a glossy surface
+    /// (a material's `gloss`) gathers its reflection through.
+    pub frustum_resolution: u32,
     /// The transfer mechanisms pass 2 follows.
     pub mechanisms: Mechanisms,
     /// Pass 2: direct light from emitting polygons computed per sample (the

@@ -319,15 +319,19 @@ fn each_light_is_weighed_by_its_own_visibility() {
     }
 }
 
-/// The radiosity integrator adds the lights its solution does not hold (a point
-/// light here) directly, with their shadows: the image with the point light is the
-/// image without it plus the point light's direct light alone.
+/// The radiosity integrator shoots a point light into its solution and adds its
+/// direct light, with its shadows, at every sample. Radiosity is linear in its
+/// sources: the image lit by the lamp quad and the point light is the image lit by
+/// the quad alone plus the image lit by the point light alone (each with every
+/// bounce), and the point light's image is more than its direct light (the walls
+/// throw it back).
 #[test]
 fn radiosity_takes_point_lights_and_their_shadows() {
     let sets = [
         "camera.width=32",
         "camera.height=32",
-        "radiosity.max_steps=30",
+        "radiosity.solver=\"gathering\"",
+        "radiosity.tolerance=1e-9",
         "shadows.method=\"ray-cast\"",
     ];
     let base = scene("radiosity-shooting", &sets);
@@ -339,39 +343,56 @@ fn radiosity_takes_point_lights_and_their_shadows() {
         .clone();
     let mut with_lamp = base.clone();
     with_lamp.lights.push(lamp.clone());
-    let mut lamp_only = base.clone();
-    lamp_only.radiosity = None;
-    lamp_only.lights = vec![lamp];
-    let (solved, both, direct) = (
+    let mut lamp_only = with_lamp.clone();
+    // The quad: no emission, and no polygon light (which a frame without
+    // radiosity would light directly).
+    for m in &mut lamp_only.materials {
+        m.emission = glam::Vec3::ZERO;
+    }
+    lamp_only.lights.retain(|l| !matches!(l, Light::Polygon(_)));
+    let mut direct_only = lamp_only.clone();
+    direct_only.radiosity = None;
+    let (quad, both, point, direct) = (
         render(&base).unwrap(),
         render(&with_lamp).unwrap(),
         render(&lamp_only).unwrap(),
+        render(&direct_only).unwrap(),
     );
-    let (view, surface) = visible_surface(&lamp_only);
-    let n = lamp_only.render.supersample;
-    let mut compared = 0;
-    for (i, (b, (s, d))) in both
+    let (_, surface) = visible_surface(&direct_only);
+    let n = direct_only.render.supersample;
+    let (mut compared, mut brighter) = (0, 0);
+    for (i, (b, (q, p))) in both
         .pixels
         .iter()
-        .zip(solved.pixels.iter().zip(&direct.pixels))
+        .zip(quad.pixels.iter().zip(&point.pixels))
         .enumerate()
     {
         let (x, y) = (i as u32 % both.width, i as u32 / both.width);
         let sample = surface.at(x * n, y * n);
-        // Emitters show their emission in the direct image; skip them and the sky.
-        if sample.is_empty() || lamp_only.material_of(sample.polygon as usize).is_emitter() {
+        // Emitters show their emission; skip them and the sky.
+        if sample.is_empty() || base.material_of(sample.polygon as usize).is_emitter() {
             continue;
         }
-        let _ = &view;
-        let expected = *s + *d;
+        let expected = *q + *p;
         assert!(
-            (*b - expected).abs().max_element() <= 1e-5 * expected.max_element().max(1.0),
+            (*b - expected).abs().max_element() <= 1e-4 * expected.max_element().max(1.0),
             "pixel {x},{y}: {b} against {expected}"
         );
+        let d = direct.pixels[i];
+        assert!(
+            p.cmpge(d - 1e-6).all(),
+            "pixel {x},{y}: the point light's image {p} below its direct light {d}"
+        );
+        if p.max_element() > 1.1 * d.max_element() + 1e-3 {
+            brighter += 1;
+        }
         compared += 1;
     }
     assert!(compared > 500);
-    assert!(direct.pixels.iter().any(|p| p.max_element() > 0.0));
+    assert!(
+        brighter > compared / 2,
+        "{brighter} of {compared} lit by bounces"
+    );
 }
 
 const TEXTURED_RADIOSITY: &str = r#"

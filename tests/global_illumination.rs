@@ -778,7 +778,7 @@ fn render_cli(entry: &str, sets: &[&str]) -> (i32, String) {
 
 #[test]
 fn bad_global_illumination_input_is_refused_in_one_line() {
-    let cases: [(&str, &[&str], &[&str]); 5] = [
+    let cases: [(&str, &[&str], &[&str]); 10] = [
         (
             "rushmeier-torrance",
             &["materials.pane.diffuse=[0.2, 0.2, 0.2]"],
@@ -800,6 +800,31 @@ fn bad_global_illumination_input_is_refused_in_one_line() {
             &["global.window_depth", "at most 4"],
         ),
         ("two-pass", &["radiosity.solver=shooting"], &["gathering"]),
+        (
+            "two-pass-glossy",
+            &["materials.mirror.gloss=0.5"],
+            &["materials.mirror.gloss", "at least 1"],
+        ),
+        (
+            "two-pass-glossy",
+            &["global.frustum_resolution=0"],
+            &["global.frustum_resolution", "from 1 to 256"],
+        ),
+        (
+            "ray-tracing",
+            &["global.frustum_resolution=8"],
+            &["global.frustum_resolution = 8", "two-pass"],
+        ),
+        (
+            "ray-tracing",
+            &["materials.mirror.gloss=50"],
+            &["materials.mirror.gloss", "two-pass"],
+        ),
+        (
+            "radiosity-point-light",
+            &["radiosity.solver=\"gathering\"", "radiosity.subdivide=0.1"],
+            &["adaptive subdivision", "polygon lights"],
+        ),
     ];
     for (entry, sets, words) in cases {
         let (code, stderr) = render_cli(entry, sets);
@@ -983,4 +1008,70 @@ fn the_second_pass_goes_through_as_many_panes_as_its_depth() {
         (two.x - expected).abs() <= 1e-5,
         "depth 2 shows {two}, τ₁ τ₂ L = {expected}"
     );
+}
+
+/// Where the second pass's rays land, a texture scales the solution's reflected
+/// light as it does at visible samples: a room whose walls' texture halves their
+/// reflectance shows half the radiance everywhere (the solution is solved with the
+/// plain reflectance, and both images read it), in the mirror too. Only the lamp,
+/// whose emission no texture scales, is left out. (Before, the mirror showed the
+/// walls untextured: a ratio of 1 there.)
+#[test]
+fn a_texture_scales_what_a_mirror_shows_as_it_scales_the_wall() {
+    let image = |textured: bool| {
+        let texture = if textured {
+            "diffuse_texture = \"half\"\n\n[textures.half]\nprocedural = \"checkerboard\"\ncolors = [[0.5, 0.5, 0.5], [0.5, 0.5, 0.5]]\n"
+        } else {
+            ""
+        };
+        let mut text = format!(
+            "[camera]\neye = [0.2, 0.5, 0.15]\nlook_at = [1.0, 0.45, 0.7]\nfov_y = 70.0\nwidth = 32\nheight = 32\n\n[render]\nsupersample = 1\n\n[global]\nmethod = \"two-pass\"\n\n[radiosity]\nsolver = \"gathering\"\nelement_size = 0.25\n\n[materials.lamp]\nemission = [4.0, 4.0, 4.0]\n\n[materials.mirror]\nmirror = [0.8, 0.8, 0.8]\n\n[materials.wall]\ndiffuse = [0.5, 0.4, 0.3]\n{texture}\n"
+        );
+        for axis in 0..3 {
+            let mut inward = DVec3::ZERO;
+            inward[axis] = 1.0;
+            let mut far = DVec3::ONE;
+            far[axis] = 0.0;
+            let mut near = DVec3::ZERO;
+            near[axis] = 1.0;
+            text += &polygon(
+                &format!("low{axis}"),
+                "wall",
+                rectangle(DVec3::ZERO, far),
+                inward,
+            );
+            text += &polygon(
+                &format!("high{axis}"),
+                "wall",
+                rectangle(near, DVec3::ONE),
+                -inward,
+            );
+        }
+        text += &polygon(
+            "lamp",
+            "lamp",
+            rectangle(DVec3::new(0.4, 0.999, 0.4), DVec3::new(0.6, 0.999, 0.6)),
+            -DVec3::Y,
+        );
+        text += &polygon(
+            "mirror",
+            "mirror",
+            rectangle(DVec3::new(0.999, 0.1, 0.2), DVec3::new(0.999, 0.9, 0.9)),
+            -DVec3::X,
+        );
+        render(&scene_from_text(&text, &[])).unwrap().pixels
+    };
+    let (textured, plain) = (image(true), image(false));
+    let mut compared = 0;
+    for (k, (t, p)) in textured.iter().zip(&plain).enumerate() {
+        if p.max_element() > 1.0 {
+            continue; // the lamp, seen or mirrored
+        }
+        assert!(
+            (*t - *p * 0.5).abs().max_element() <= 1e-5 * p.max_element().max(1e-3),
+            "pixel {k}: {t} textured against {p} plain"
+        );
+        compared += 1;
+    }
+    assert!(compared > 900, "{compared} pixels compared");
 }

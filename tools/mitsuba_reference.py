@@ -6,6 +6,9 @@ against `render cornell-box-point --shadows ray-cast --supersample 4`.
 With --global: the box lit by its quad light with every diffuse bounce, Mitsuba's
 path tracer against the converged radiosity solution, `render radiosity-gathering
 --element-size 10 --patch-size 35 --supersample 4`.
+With --point-global: the point-lit box with every diffuse bounce, Mitsuba's path
+tracer against `render radiosity-point-light --supersample 4` (the point light shot
+into the radiosity solution, its direct light exact per sample).
 With --quad: the box lit by its quad light, direct light only (Mitsuba's `direct`
 integrator, one bounce, emitter sampling), against `render cornell-box --shadows
 umbra-penumbra --supersample 4` (another method with --shadows and --set). This is the
@@ -39,7 +42,7 @@ spp:
 mesh, 0.035 against 0.032 at --element-size 10 --patch-size 35: at the entry's mesh
 the mirrors' share is mostly the 35 mm elements' blur of the caustics' sharp edges.)
 
-All in Mitsuba's scalar_rgb variant with a box filter and a float32 film, at the same
+All in Mitsuba's scalar_rgb variant (or --variant) with a box filter and a float32 film, at the same
 size, compared with NVIDIA's FLIP on the sRGB images. Not part of the test suite (it
 needs two large PyPI packages): run it by hand. --self-check renders the reference a
 second time with another seed and prints FLIP between the two: the reference's own
@@ -140,8 +143,10 @@ def main():
     mode.add_argument("--global", dest="global_", action="store_true")
     mode.add_argument("--quad", action="store_true")
     mode.add_argument("--mirrors", action="store_true")
+    mode.add_argument("--point-global", action="store_true")
     # With one emitter sample per camera sample, every camera sample places its own
     # stratified point on the quad: the shadow rays are spread as well as they can be.
+    args.add_argument("--variant", default="scalar_rgb", help="Mitsuba's variant (llvm_ad_rgb needs DRJIT_LIBLLVM_PATH)")
     args.add_argument("--emitter-samples", type=int, default=1)
     args.add_argument("--seed", type=int, default=0)
     args.add_argument("--self-check", action="store_true")
@@ -152,10 +157,10 @@ def main():
     args.add_argument("--element-size", help="lumiere's radiosity mesh (default: 10 with --global, the entry's with --mirrors)")
     args.add_argument("--patch-size", help="lumiere's radiosity patches (default: 35 with --global, the entry's with --mirrors)")
     a = args.parse_args()
-    mi.set_variant("scalar_rgb")
+    mi.set_variant(a.variant)
     folder = tempfile.mkdtemp()
     lit_by_quad = a.global_ or a.quad or a.mirrors
-    if a.global_ or a.mirrors:
+    if a.global_ or a.mirrors or a.point_global:
         # Unbounded paths, Russian roulette only after 1000 bounces (no path gets that
         # far: the box is open to the front). Through a perfect mirror only BSDF samples
         # find the lamp, and the path tracer weighs them fully (MIS gives emitter
@@ -198,7 +203,7 @@ def main():
 
     start = time.perf_counter()
     reference = np.array(mi.render(scene(a.seed)), dtype=np.float32)
-    light = "" if a.global_ or a.mirrors else f", {a.emitter_samples} emitter sample(s) per sample"
+    light = "" if a.global_ or a.mirrors or a.point_global else f", {a.emitter_samples} emitter sample(s) per sample"
     print(f"Mitsuba: {a.size} x {a.size}, {a.spp} spp{light}, seed {a.seed}, {time.perf_counter() - start:.1f} s")
     print(f"mean radiance, Mitsuba: {reference.mean(axis=(0, 1))}")
     if a.write:
@@ -217,7 +222,9 @@ def main():
     if a.no_compare:
         return
     ours = os.path.join(folder, "lumiere.pfm")
-    if a.global_ or a.mirrors:
+    if a.point_global:
+        command = ["radiosity-point-light"]
+    elif a.global_ or a.mirrors:
         command = ["two-pass" if a.mirrors else "radiosity-gathering"]
         element, patch = (a.element_size, a.patch_size) if a.mirrors else (a.element_size or "10", a.patch_size or "35")
         command += ["--element-size", element] if element else []

@@ -30,6 +30,7 @@
 //! ∫cos θ dθ = sin θ_j+ − sin θ_j−, exactly (tests check both against finite
 //! differences of a closed form).
 
+use super::local::{diffuse_texture_scale, reflectance_at};
 use super::solution_radiance::SolutionRadiance;
 use super::traced_scene::{Leaving, SurfaceHit, TracedScene};
 use crate::geometry::bvh::Aabb;
@@ -210,8 +211,8 @@ pub struct FinalGather {
     /// What the solution's surfaces reflect, (B − E)/π; with `direct_at_hits`,
     /// without the part they received straight from the emitters, (B − E − D)/π.
     reflected: SolutionRadiance,
-    /// The polygon lights, whose direct light is computed where rays land when
-    /// the settings ask it.
+    /// The lights whose direct light is computed where rays land, when the
+    /// settings ask it: all of them (the solution holds every light).
     lights: Vec<Light>,
     pub settings: FinalGatherSettings,
     pub strata: Strata,
@@ -255,7 +256,7 @@ impl FinalGather {
         let lights = scene
             .lights
             .iter()
-            .filter(|l| direct.is_some() && matches!(l, Light::Polygon(_)))
+            .filter(|_| direct.is_some())
             .cloned()
             .collect();
         FinalGather {
@@ -290,16 +291,20 @@ impl FinalGather {
             |hit, direction| match hit.polygon {
                 // Radiosity leaves the front only.
                 Some(p) if direction.dot(hit.geometric_normal) < 0.0 => {
-                    self.reflected.at(p, hit.position)
-                        + self.direct_at(scene, hit, direction, &mut lights)
+                    let reflected = self.reflected.at(p, hit.position);
+                    let textured = match diffuse_texture_scale(scene, hit, -direction) {
+                        Some(scale) => reflected * scale,
+                        None => reflected,
+                    };
+                    textured + self.direct_at(scene, hit, direction, &mut lights)
                 }
                 _ => Vec3::ZERO,
             },
         )
     }
 
-    /// The direct light a hit reflects back along the ray, from the polygon
-    /// lights, each shadowed by one shadow ray to a uniform point of it (the
+    /// The direct light a hit reflects back along the ray, from every light,
+    /// each shadowed by one shadow ray to a uniform point of it (the
     /// gather's many rays average the shadow rays' noise).
     fn direct_at(
         &self,
@@ -311,9 +316,8 @@ impl FinalGather {
         if self.lights.is_empty() {
             return Vec3::ZERO;
         }
-        let material = &scene.materials[hit.material];
         let reflectance = Reflectance {
-            diffuse: material.diffuse,
+            diffuse: reflectance_at(scene, hit, -direction).diffuse,
             specular: Vec3::ZERO,
             exponent: 1.0,
         };

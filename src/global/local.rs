@@ -43,6 +43,21 @@ pub fn reflectance_at(scene: &Scene, hit: &SurfaceHit, to_eye: DVec3) -> Reflect
     reflectance
 }
 
+/// What a diffuse texture multiplies the material's diffuse reflectance by at a
+/// hit, per band (`None` untextured): a solution solved with the plain reflectance
+/// is scaled by it where rays land, as the scan-line pass scales it at samples.
+pub fn diffuse_texture_scale(scene: &Scene, hit: &SurfaceHit, to_eye: DVec3) -> Option<Vec3> {
+    let material = &scene.materials[hit.material];
+    material.diffuse_texture?;
+    let textured = reflectance_at(scene, hit, to_eye).diffuse;
+    let ratio = |t: f32, plain: f32| if plain > 0.0 { t / plain } else { 0.0 };
+    Some(Vec3::new(
+        ratio(textured.x, material.diffuse.x),
+        ratio(textured.y, material.diffuse.y),
+        ratio(textured.z, material.diffuse.z),
+    ))
+}
+
 /// Radiance towards `to_eye` from the lights `lit` selects, each shadowed by rays:
 /// one to a point, spot or distant light (Whitted), N × N stratified ones over an
 /// extended light, weighted by their share of its unoccluded irradiance (as

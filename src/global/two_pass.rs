@@ -20,19 +20,30 @@
 //! solution does not hold (point, spot, distant, sphere) are added where rays land,
 //! with shadow rays, as the shading pass adds them at visible samples.
 //!
-//! Choices left open: ideal mirrors, one ray each (the paper's reflection frustum
-//! for glossy surfaces is not built); panes are thin (the transmitted ray goes
+//! A glossy mirror (a material's `gloss`, the exponent n of its lobe cosⁿ about the
+//! mirror direction) is seen through the paper's reflection frustum
+//! (`reflection_frustum`): a ray through each of its cells, weighted by the lobe.
+//! Pass 1 takes it for an ideal mirror (the virtual environment is the lobe's
+//! centre), as the paper's first pass follows ideal mirrors only.
+//!
+//! Choices left open: the frustum is opened at the first reflection from the eye;
+//! a glossy surface met by one of its rays reflects along its mirror direction
+//! alone (frusta within frusta multiply the rays by N² at each level); panes are thin (the transmitted ray goes
 //! straight on); where a ray lands the solution is read as `SolutionRadiance` reads
-//! it, and textures are not applied.
+//! it, its reflected part scaled by the diffuse texture there, as the scan-line
+//! pass scales it at samples.
 
-use super::local::lights_at;
+use super::local::{diffuse_texture_scale, lights_at, reflectance_at};
+use super::reflection_frustum::ReflectionFrustum;
 use super::solution_radiance::SolutionRadiance;
 use super::traced_scene::{Leaving, TracedScene};
 use crate::error::{Error, Result};
+use crate::geometry::sampling::Stream;
 use crate::radiosity::Solution;
 use crate::scene::Scene;
 use crate::settings::{GlobalMethod, GlobalSettings};
 use glam::{DVec3, Vec3};
+use std::f64::consts::TAU;
 use std::sync::Arc;
 
 /// Refuses materials a method's first pass cannot carry: two-pass follows planar
@@ -74,7 +85,12 @@ pub struct SecondPass {
     settings: GlobalSettings,
     /// The lights the solution does not hold, added where rays land.
     lit: Vec<bool>,
+    /// Per material, the reflection frustum of a glossy mirror.
+    frusta: Vec<Option<ReflectionFrustum>>,
 }
+
+/// The seed of the streams that turn each sample's reflection frustum.
+const FRUSTUM_SEED: u64 = 0x0066_7275_7374_756d;
 
 impl SecondPass {
     pub fn new(
@@ -92,6 +108,14 @@ impl SecondPass {
                 &solution.elements,
                 solution.display,
             ),
+            frusta: scene
+                .materials
+                .iter()
+                .map(|m| {
+                    m.gloss
+                        .map(|n| ReflectionFrustum::new(n, settings.frustum_resolution))
+                })
+                .collect(),
             settings,
             lit,
         }
@@ -136,7 +160,8 @@ impl SecondPass {
         weight: Vec3,
         stream: u64,
     ) -> Vec3 {
-        let material = &scene.materials[scene.polygons[polygon as usize].material];
+        let index = scene.polygons[polygon as usize].material;
+        let material = &scene.materials[index];
         let threshold = self.settings.threshold as f32;
         let spawn = |k: Vec3| {
             k.max_element() > 0.0
@@ -147,7 +172,29 @@ impl SecondPass {
         let (k_s, k_t) = (material.mirror, material.transmittance);
         if spawn(k_s) {
             let r = (incident - 2.0 * incident.dot(normal) * normal).normalize();
-            radiance += k_s * self.ray(scene, position, r, polygon, depth, weight * k_s, stream);
+            radiance += k_s
+                * match &self.frusta[index] {
+                    Some(frustum) if depth == 1 => {
+                        let turn = Stream::new(FRUSTUM_SEED, stream).next_f64() * TAU;
+                        let mut gathered = Vec3::ZERO;
+                        for (d, w) in frustum.rays(r, turn) {
+                            // Below the horizon: nothing (the weight stays counted).
+                            if d.dot(normal) > 0.0 {
+                                gathered += self.ray(
+                                    scene,
+                                    position,
+                                    d,
+                                    polygon,
+                                    depth,
+                                    weight * k_s,
+                                    stream,
+                                ) * w as f32;
+                            }
+                        }
+                        gathered
+                    }
+                    _ => self.ray(scene, position, r, polygon, depth, weight * k_s, stream),
+                };
         }
         if spawn(k_t) {
             radiance += k_t
@@ -212,8 +259,12 @@ impl SecondPass {
         }
         let to_eye = -direction;
         let mut radiance = self.radiance.at(polygon, hit.position);
+        if let Some(scale) = diffuse_texture_scale(scene, &hit, to_eye) {
+            let emitted = scene.materials[hit.material].emission;
+            radiance = emitted + (radiance - emitted) * scale;
+        }
         if self.lit.iter().any(|&l| l) {
-            let reflectance = scene.materials[hit.material].reflectance();
+            let reflectance = reflectance_at(scene, &hit, to_eye);
             radiance += lights_at(
                 scene,
                 &self.traced,

@@ -245,16 +245,13 @@ pub fn gather(
     let mut patches = vec![DVec3::ZERO; n];
     let mut sweeps = [0; 3];
     let ones = vec![1.0; n];
+    let sources = mesh.patch_sources();
     for band in 0..3 {
         let matrix: Vec<Vec<f64>> = rows
             .iter()
             .map(|row| row.iter().map(|k| k[band]).collect())
             .collect();
-        let emission: Vec<f64> = mesh
-            .patches
-            .iter()
-            .map(|p| p.emission[band] as f64)
-            .collect();
+        let emission: Vec<f64> = sources.iter().map(|s| s[band] as f64).collect();
         let (b, sweeps_taken) = gauss_seidel(&matrix, &emission, &ones, tolerance);
         sweeps[band] = sweeps_taken;
         for (p, value) in patches.iter_mut().zip(b) {
@@ -268,7 +265,10 @@ pub fn gather(
         .map(|(e, t)| {
             let p = &mesh.patches[e.patch];
             let (front, back) = gathered(t, &patches);
-            p.emission.as_dvec3() + p.reflectance.as_dvec3() * front + tau[e.patch] * back
+            p.emission.as_dvec3()
+                + e.received.as_dvec3()
+                + p.reflectance.as_dvec3() * front
+                + tau[e.patch] * back
         })
         .collect();
     Ok(Gathered {

@@ -69,12 +69,9 @@ pub fn gather(
     let start = Instant::now();
     let mut patches = vec![DVec3::ZERO; mesh.patches.len()];
     let mut sweeps = [0; 3];
+    let sources = mesh.patch_sources();
     for band in 0..3 {
-        let emission: Vec<f64> = mesh
-            .patches
-            .iter()
-            .map(|p| p.emission[band] as f64)
-            .collect();
+        let emission: Vec<f64> = sources.iter().map(|s| s[band] as f64).collect();
         let reflectance: Vec<f64> = mesh
             .patches
             .iter()
@@ -93,7 +90,7 @@ pub fn gather(
         .map(|(e, row)| {
             let p = &mesh.patches[e.patch];
             let gathered: DVec3 = row.iter().zip(&patches).map(|(&f, b)| *b * f as f64).sum();
-            p.emission.as_dvec3() + p.reflectance.as_dvec3() * gathered
+            p.emission.as_dvec3() + e.received.as_dvec3() + p.reflectance.as_dvec3() * gathered
         })
         .collect();
     Ok(Gathered {

@@ -110,6 +110,9 @@ pub struct Element {
     pub corners: Vec<u32>,
     pub centre: DVec3,
     pub area: f64,
+    /// The radiosity ρ_e H_e the element receives straight from the scene's point,
+    /// spot, distant and sphere lights (`light_sources::shine`; zero until then).
+    pub received: Vec3,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -251,6 +254,32 @@ impl Mesh {
             .sum()
     }
 
+    /// Per patch, the radiosity it has before any interreflection: its emission
+    /// and the area-weighted mean of what its elements received from the lights.
+    pub fn patch_sources(&self) -> Vec<Vec3> {
+        self.patches
+            .iter()
+            .map(|p| {
+                let received: Vec3 = self.elements[p.elements.clone()]
+                    .iter()
+                    .map(|e| e.received * (e.area / p.area) as f32)
+                    .sum();
+                p.emission + received
+            })
+            .collect()
+    }
+
+    /// The power a solve starts with per band: Σ E_i A_i over the patches, and
+    /// Σ ρ_e H_e A_e over the elements the lights reach.
+    pub fn source_power(&self) -> Vec3 {
+        let received: Vec3 = self
+            .elements
+            .iter()
+            .map(|e| e.received * e.area as f32)
+            .sum();
+        self.emitted_power() + received
+    }
+
     /// Per vertex, the elements whose outline passes through it (`outline`).
     pub fn vertex_elements(&self) -> Vec<Vec<u32>> {
         let mut users = vec![Vec::new(); self.vertices.len()];
@@ -350,6 +379,7 @@ impl Mesh {
                         centre: area_centroid(&positions),
                         area: area(&positions),
                         corners,
+                        received: Vec3::ZERO,
                     });
                     origin.push(Err(e));
                 }
@@ -460,6 +490,7 @@ impl Mesh {
                 centre: area_centroid(&positions),
                 area: area(&positions),
                 corners,
+                received: Vec3::ZERO,
             });
         }
         let elements = first..self.elements.len();

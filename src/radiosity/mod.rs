@@ -14,6 +14,7 @@ pub mod extended;
 pub mod form_factors;
 pub mod gathering;
 pub mod hemicube;
+pub mod light_sources;
 pub mod mesh;
 pub mod nusselt;
 pub mod receivers;
@@ -81,16 +82,22 @@ pub fn mesh(scene: &Scene, settings: &Settings) -> Result<Mesh> {
             suggestion: "use a lower resolution, or raise radiosity.max_memory_mb".into(),
         })));
     }
-    let mesh = Mesh::build_within(
+    if settings.subdivision.is_some() && light_sources::any(scene) {
+        return Err(Error::Radiosity(
+            "adaptive subdivision refines a solution lit by emitting polygons: leave `subdivide` out, or light the scene with polygon lights only".into(),
+        ));
+    }
+    let mut mesh = Mesh::build_within(
         scene,
         settings.patches,
         settings.elements,
         settings.memory_budget,
         hemicubes,
     )?;
-    if mesh.emitted_power().max_element() <= 0.0 {
+    light_sources::shine(scene, &mut mesh);
+    if mesh.source_power().max_element() <= 0.0 {
         return Err(Error::Radiosity(
-            "the scene has no emitting surface (a material with `emission`): radiosity has no light to distribute".into(),
+            "nothing lights the mesh: the scene has no emitting surface (a material with `emission`), and no light reaches a polygon's front: radiosity has no light to distribute".into(),
         ));
     }
     Ok(mesh)
@@ -115,9 +122,32 @@ impl Solution {
             summary: format!("{}; drawn without its direct part", self.summary),
         })
     }
+
+    /// The solution without what the point, spot, distant and sphere lights gave
+    /// the elements directly, for a display that adds those lights' direct light
+    /// itself, exactly and shadowed, at every sample (their light stays in the
+    /// interreflection). `None` if they gave nothing.
+    pub fn without_light_sources(&self) -> Option<Solution> {
+        if self.mesh.elements.iter().all(|e| e.received == Vec3::ZERO) {
+            return None;
+        }
+        Some(Solution {
+            mesh: self.mesh.clone(),
+            elements: self
+                .elements
+                .iter()
+                .zip(&self.mesh.elements)
+                .map(|(b, e)| (*b - e.received).max(Vec3::ZERO))
+                .collect(),
+            direct: self.direct.clone(),
+            display: self.display,
+            summary: self.summary.clone(),
+        })
+    }
 }
 
-/// Per element, ρ_e Σ_j F_ej E_j over the emitting patches j, from its gathering row.
+/// Per element, ρ_e Σ_j F_ej E_j over the emitting patches j, from its gathering row,
+/// and what the element received from the lights shot into the solution.
 fn direct_from_rows(mesh: &Mesh, rows: &[Vec<f32>]) -> Vec<Vec3> {
     let emitters: Vec<usize> = (0..mesh.patches.len())
         .filter(|&j| mesh.patches[j].emission.max_element() > 0.0)
@@ -130,7 +160,7 @@ fn direct_from_rows(mesh: &Mesh, rows: &[Vec<f32>]) -> Vec<Vec3> {
                 .iter()
                 .map(|&j| mesh.patches[j].emission * row[j])
                 .sum();
-            mesh.patches[e.patch].reflectance * gathered
+            mesh.patches[e.patch].reflectance * gathered + e.received
         })
         .collect()
 }

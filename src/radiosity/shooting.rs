@@ -46,16 +46,18 @@ pub struct Stop {
 }
 
 impl Shooting {
-    /// Every element at its emission, every patch's emission unshot.
+    /// Every element at its emission and what the lights shot into it gave it
+    /// (`light_sources`: their shots come first), every patch's emission and
+    /// received light unshot.
     pub fn start(mesh: &Mesh) -> Shooting {
         Shooting {
             elements: mesh
                 .elements
                 .iter()
-                .map(|e| mesh.patches[e.patch].emission)
+                .map(|e| mesh.patches[e.patch].emission + e.received)
                 .collect(),
-            unshot: mesh.patches.iter().map(|p| p.emission).collect(),
-            direct: vec![Vec3::ZERO; mesh.elements.len()],
+            unshot: mesh.patch_sources(),
+            direct: mesh.elements.iter().map(|e| e.received).collect(),
             emission_shot: vec![false; mesh.patches.len()],
             steps: 0,
         }
@@ -70,9 +72,9 @@ impl Shooting {
             .sum()
     }
 
-    /// Unshot power over emitted power (bands summed).
+    /// Unshot power over the power the solve started with (bands summed).
     pub fn unshot_fraction(&self, mesh: &Mesh) -> f64 {
-        let emitted = mesh.emitted_power().element_sum() as f64;
+        let emitted = mesh.source_power().element_sum() as f64;
         if emitted == 0.0 {
             return 0.0;
         }

@@ -226,7 +226,7 @@ impl Renderer {
         *self.final_gather.lock().expect("no poisoned lock") = self.final_gather_over(&solution);
         let solution = match (exact_direct(&self.scene), solution.indirect()) {
             (true, Some(indirect)) => Arc::new(indirect),
-            _ => solution,
+            _ => solution.without_light_sources().map_or(solution, Arc::new),
         };
         *self.radiosity.lock().expect("no poisoned lock") = Some(solution);
         *self.second_pass.lock().expect("no poisoned lock") = None;
@@ -413,10 +413,11 @@ impl Renderer {
     }
 
     /// The solution as frames draw it: without its direct part when the second pass
-    /// computes direct light exactly.
+    /// computes direct light exactly; else without the direct light of the point,
+    /// spot, distant and sphere lights, which every sample adds itself.
     fn drawn(&self, solution: radiosity::Solution) -> Result<radiosity::Solution> {
         if !exact_direct(&self.scene) {
-            return Ok(solution);
+            return Ok(solution.without_light_sources().unwrap_or(solution));
         }
         solution.indirect().ok_or_else(|| {
             Error::Radiosity(

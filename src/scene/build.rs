@@ -136,6 +136,11 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
             &environment_index,
             global.is_some(),
         )?;
+        ensure_valid!(
+            material.gloss.is_none() || global.as_ref().is_some_and(|g| g.method.reads_radiosity()),
+            format!("materials.{name}.gloss"),
+            "materials.{name}.gloss: a glossy mirror is gathered through the two-pass methods' reflection frustum; set [global] method = \"two-pass\" (ray tracing and environment maps follow ideal mirrors and would ignore it)"
+        );
         builder.add_material(material);
     }
     for (index, object) in file.objects.iter().enumerate() {

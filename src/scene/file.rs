@@ -185,6 +185,8 @@ pub struct GlobalFile {
     pub weights: crate::settings::SpecularWeights,
     /// Absent: 2 (the two-pass methods' mirror-of-mirror levels).
     pub window_depth: Option<u32>,
+    /// Absent: 10 (the two-pass methods' reflection frustum, cells a side).
+    pub frustum_resolution: Option<u32>,
     /// Absent: all four.
     pub mechanisms: Option<Vec<MechanismFile>>,
     #[serde(default)]
@@ -469,6 +471,9 @@ pub struct MaterialFile {
     /// Reflection coefficient k_r of the environment seen in the mirror direction.
     #[serde(default)]
     pub mirror: Vec3File,
+    /// The two-pass methods: a glossy mirror, its reflection spread over the
+    /// lobe cosⁿ about the mirror direction, n this exponent (absent: ideal).
+    pub gloss: Option<f64>,
     /// Index of refraction: the surface reflects by Fresnel's weight and (with a
     /// transmittance) refracts.
     pub ior: Option<f64>,

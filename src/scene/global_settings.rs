@@ -16,6 +16,10 @@ pub const MAX_WINDOW_DEPTH: u32 = 4;
 pub const MAX_GATHER_RAYS: u32 = 1 << 20;
 /// Mirror-of-mirror levels when the scene gives none.
 const DEFAULT_WINDOW_DEPTH: u32 = 2;
+/// The reflection frustum's cells a side when the scene gives none.
+const DEFAULT_FRUSTUM_RESOLUTION: u32 = 10;
+/// A frustum of 256² cells is 65,536 rays a glossy sample.
+pub const MAX_FRUSTUM_RESOLUTION: u32 = 256;
 
 pub fn from_file(g: &GlobalFile) -> Result<Settings> {
     ensure_valid!(
@@ -61,6 +65,19 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         "global.window_depth must be at most {MAX_WINDOW_DEPTH} (each level renders a virtual environment per mirror), got {}",
         window_depth
     );
+    ensure_valid!(
+        !(ray_traced && g.frustum_resolution.is_some()),
+        "global.frustum_resolution",
+        "global.frustum_resolution = {} is the two-pass methods' (the reflection frustum of glossy surfaces in pass 2); ray tracing follows ideal mirrors and would ignore it",
+        g.frustum_resolution.unwrap_or_default()
+    );
+    let frustum_resolution = g.frustum_resolution.unwrap_or(DEFAULT_FRUSTUM_RESOLUTION);
+    ensure_valid!(
+        (1..=MAX_FRUSTUM_RESOLUTION).contains(&frustum_resolution),
+        "global.frustum_resolution",
+        "global.frustum_resolution must be from 1 to {MAX_FRUSTUM_RESOLUTION} (cells along each side of the reflection frustum), got {}",
+        frustum_resolution
+    );
     let mechanisms = match &g.mechanisms {
         None => Mechanisms::ALL,
         Some(list) => Mechanisms {
@@ -89,6 +106,7 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         contrast: g.contrast,
         weights: g.weights,
         window_depth,
+        frustum_resolution,
         mechanisms,
         exact_direct: g.exact_direct,
         analytic_spheres: g.analytic_spheres,

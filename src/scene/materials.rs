@@ -59,6 +59,7 @@ pub fn from_file(
         mapping,
         interpolation: m.interpolation,
         mirror: colour(&what("mirror"), m.mirror)?,
+        gloss: m.gloss,
         ior: m.ior,
         transmittance: colour(&what("transmittance"), m.transmittance)?,
         translucence: colour(&what("translucence"), m.translucence)?,
@@ -68,6 +69,20 @@ pub fn from_file(
             .map(|e| named(environments, e, &what("environment"), "environment"))
             .transpose()?,
     };
+    if let Some(gloss) = m.gloss {
+        ensure_valid!(
+            gloss.is_finite() && gloss >= 1.0,
+            what("gloss"),
+            "{} must be a number of at least 1 (the exponent n of the glossy lobe cos^n about the mirror direction; leave it out for an ideal mirror), got {gloss}",
+            what("gloss")
+        );
+        ensure_valid!(
+            material.mirror.max_element() > 0.0,
+            what("gloss"),
+            "{}: gloss spreads the mirror's reflection; give the material a mirror reflectance",
+            what("gloss")
+        );
+    }
     if let Some(ior) = m.ior {
         ensure_valid!(
             ior.is_finite() && ior > 0.0,

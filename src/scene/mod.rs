@@ -85,6 +85,10 @@ pub struct Material {
     /// Reflection coefficient k_r of the environment seen in the mirror direction
     /// (Blinn & Newell); with `ior`, a tint of Fresnel's reflection.
     pub mirror: Vec3,
+    /// The two-pass methods' glossy mirror: the exponent n of the lobe cosⁿ about
+    /// the mirror direction that pass 2's reflection frustum weighs (`None`: an
+    /// ideal mirror, one ray).
+    pub gloss: Option<f64>,
     /// Index of refraction of the material (the outside is vacuum, 1).
     pub ior: Option<f64>,
     /// What the environment seen in the refracted direction is multiplied by; for

@@ -191,7 +191,7 @@ fn lists_the_catalogue_by_topic_with_summaries() {
         .filter(|l| !l.is_empty())
         .map(|l| l.split_whitespace().next().unwrap())
         .collect();
-    assert_eq!(ids.len(), 7, "{ids:?}");
+    assert_eq!(ids.len(), 8, "{ids:?}");
     assert!(ids.contains(&"substructuring") && !ids.contains(&"cornell-box"));
 }
 
