@@ -372,3 +372,48 @@ fn the_cache_agrees_with_gathering_everywhere_and_has_no_seams() {
         "a second difference of {worst} on the back wall (gathers' noise {noise})"
     );
 }
+
+/// A gather ray that meets a mirror goes on, and brings back the emission of the
+/// lamp it finds there: under a mirror ceiling (ρ_s = 0.8, at height 2), a lamp at
+/// height 1 facing the mirror lights the floor beside it only through the mirror,
+/// and the gathered irradiance (the solution's own light left out) is ρ_s times
+/// Lambert's closed form for the lamp's mirror image, the square at height 3 facing
+/// down. Before, a gather ray stopped at the mirror and brought nothing.
+#[test]
+fn a_gather_through_a_mirror_finds_the_mirrored_lamp() {
+    let mut text = format!(
+        "{CAMERA}[radiosity]\nsolver = \"gathering\"\n\n[global]\nmethod = \"two-pass\"\nexact_direct = true\n\n[global.final_gather]\nrays = 65536\n\n[materials.floor]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.mirror]\nmirror = [0.8, 0.8, 0.8]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n"
+    );
+    let plane = |y: f64| {
+        [
+            DVec3::new(-6.0, y, -6.0),
+            DVec3::new(7.0, y, -6.0),
+            DVec3::new(7.0, y, 7.0),
+            DVec3::new(-6.0, y, 7.0),
+        ]
+    };
+    text += &polygon("floor", "floor", plane(0.0), DVec3::Y);
+    text += &polygon("mirror", "mirror", plane(2.0), -DVec3::Y);
+    text += &polygon("lamp", "lamp", square(1, 1.0), DVec3::Y);
+    let scene = scene_from_text(&text, &[]);
+    let settings = scene.radiosity.clone().unwrap();
+    let mut solution = radiosity::solve(&scene, &settings, &mut |_, _| {}).unwrap();
+    // What the solution's surfaces reflect left out: only the lamp's emission,
+    // found through the mirror, is gathered.
+    for (b, e) in solution.elements.iter_mut().zip(&solution.mesh.elements) {
+        *b = solution.mesh.patches[e.patch].emission;
+    }
+    let gather_settings = scene.global.as_ref().unwrap().final_gather.unwrap();
+    let traced = Arc::new(TracedScene::new(&scene, false));
+    let gather = FinalGather::new(&scene, &solution, traced, gather_settings);
+    let image = square(1, 3.0);
+    for x in [DVec3::new(-1.5, 0.0, 0.5), DVec3::new(-1.0, 0.0, -1.5)] {
+        let exact = 0.8 * lambert(x, DVec3::Y, &image, 1.0);
+        let found = gather.gather(&scene, 0, x, DVec3::Y, 3).irradiance.x as f64;
+        let error = (found - exact).abs() / exact;
+        eprintln!("at {x}: gathered {found:.5}, 0.8 x Lambert {exact:.5}, error {error:.4}");
+        // 65,536 stratified rays on a lamp seen small: 0.09% and 0.25% measured
+        // (4,096 rays leave 3.5%).
+        assert!(error < 0.01, "at {x}: {found} against {exact}");
+    }
+}

@@ -183,6 +183,16 @@ fn the_two_pass_mirror_box_matches_a_path_tracer() {
     );
 }
 
+/// The same mirrored box with the direct light exact and the rest gathered from the
+/// same solution through the irradiance cache, gather rays going on through the
+/// mirrors (`two-pass-final-gather`): measured 0.0397, within the 0.04 asked (the
+/// 35 mm mesh displayed as it is: 0.070; 10 mm elements: 0.035 in 108 s).
+#[test]
+fn the_final_gather_brings_the_mirrored_box_within_0_04_of_a_path_tracer() {
+    let gathered = two_pass_flip("two-pass-final-gather");
+    assert!(gathered < 0.04, "two-pass-final-gather: FLIP {gathered:.5}");
+}
+
 /// The diffuse Cornell box, every bounce, against Mitsuba's path tracer, held in
 /// tests/references/cornell-box-global-mitsuba.pfm (`tools/mitsuba_reference.py
 /// --global --size 256 --spp 4096 --seed 7`; a 1024-spp render is FLIP 0.0094 from

@@ -17,7 +17,10 @@
 //! radiance the solution's surface reflects, (B − E)/π: its emission is left out,
 //! because the direct light is computed exactly by the shading pass beside this.
 //! Rays that leave the scene read nothing (the solution holds no light from beyond
-//! it).
+//! it). A ray that meets a mirror or a pane goes on, as the second pass's rays do,
+//! and brings back the emission of a lamp it finds beyond: the light mirrors throw,
+//! which the exact direct light does not see (our choice: the papers gather in
+//! diffuse scenes).
 //!
 //! From the same rays come G. J. Ward, P. S. Heckbert's gradients ("Irradiance
 //! gradients", Eurographics Rendering Workshop 1992), which the irradiance cache
@@ -215,6 +218,9 @@ pub struct FinalGather {
     /// settings ask it: all of them (the solution holds every light).
     lights: Vec<Light>,
     pub settings: FinalGatherSettings,
+    /// How many mirrors and panes a gather ray goes on through (the second
+    /// pass's `depth`).
+    depth: u32,
     pub strata: Strata,
     /// The scene's bounds: the cache's octree covers them, and its spacings are
     /// fractions of their diagonal.
@@ -266,6 +272,7 @@ impl FinalGather {
             strata: Strata::for_rays(settings.rays),
             settings,
             bounds: Aabb::of(scene.polygons.iter().flat_map(|p| p.positions())),
+            depth: scene.global.as_ref().map_or(0, |g| g.depth),
         }
     }
 
@@ -288,19 +295,64 @@ impl FinalGather {
             Leaving::Polygon(polygon),
             self.strata,
             &mut stream,
-            |hit, direction| match hit.polygon {
-                // Radiosity leaves the front only.
-                Some(p) if direction.dot(hit.geometric_normal) < 0.0 => {
-                    let reflected = self.reflected.at(p, hit.position);
-                    let textured = match diffuse_texture_scale(scene, hit, -direction) {
-                        Some(scale) => reflected * scale,
-                        None => reflected,
-                    };
-                    textured + self.direct_at(scene, hit, direction, &mut lights)
-                }
-                _ => Vec3::ZERO,
-            },
+            |hit, direction| self.brought(scene, hit, direction, 1, &mut lights),
         )
+    }
+
+    /// What a gather ray brings back from `hit`: the radiance the solution's
+    /// surface reflects there (with `direct_at_hits`, its direct light computed
+    /// again); off a mirror or through a pane, what the ray goes on to meet, to the
+    /// second pass's depth, emitters' emission included: the lamp seen in a mirror
+    /// lights the point as the solution's mirrored factors had it light the mesh,
+    /// and the exact direct light, which sees the lamp only straight on, leaves it
+    /// out.
+    fn brought(
+        &self,
+        scene: &Scene,
+        hit: &SurfaceHit,
+        direction: DVec3,
+        depth: u32,
+        lights: &mut Stream,
+    ) -> Vec3 {
+        // Radiosity leaves the front only.
+        let Some(p) = hit.polygon else {
+            return Vec3::ZERO;
+        };
+        if direction.dot(hit.geometric_normal) >= 0.0 {
+            return Vec3::ZERO;
+        }
+        let reflected = self.reflected.at(p, hit.position);
+        let mut radiance = match diffuse_texture_scale(scene, hit, -direction) {
+            Some(scale) => reflected * scale,
+            None => reflected,
+        } + self.direct_at(scene, hit, direction, lights);
+        if depth > self.depth {
+            return radiance;
+        }
+        let material = &scene.materials[hit.material];
+        let normal = hit.geometric_normal;
+        let mirrored = direction - 2.0 * direction.dot(normal) * normal;
+        for (k, onward) in [
+            (material.mirror, mirrored),
+            (material.transmittance, direction),
+        ] {
+            if k.max_element() <= 0.0 {
+                continue;
+            }
+            let Some(next) =
+                self.traced
+                    .closest(hit.position, onward, f64::INFINITY, hit.leaving())
+            else {
+                continue;
+            };
+            let emitted = if onward.dot(next.geometric_normal) < 0.0 {
+                scene.materials[next.material].emission
+            } else {
+                Vec3::ZERO
+            };
+            radiance += k * (emitted + self.brought(scene, &next, onward, depth + 1, lights));
+        }
+        radiance
     }
 
     /// The direct light a hit reflects back along the ray, from every light,
