@@ -8,6 +8,7 @@ pub mod environment_mapping;
 pub mod light_model;
 pub mod optics;
 mod pass;
+mod point_lanes;
 pub mod sphere_form_factor;
 mod textured;
 

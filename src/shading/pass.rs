@@ -20,6 +20,7 @@
 
 use super::environment_mapping::{EnvironmentSample, backdrop};
 use super::light_model::{SurfacePoint, reflected};
+use super::point_lanes::Lanes;
 use super::textured::{polygon_tangents, textured_point};
 use crate::geometry::lambert_contour::projected_solid_angle;
 use crate::geometry::polygon::centroid;
@@ -81,6 +82,8 @@ pub struct FrameShading<'a> {
     /// The lights this pass adds, in the scene's order (an integrator may light with
     /// the others itself).
     added: Vec<usize>,
+    /// Whether every light this pass adds is a point light (the lanes' case).
+    points_only: bool,
 }
 
 impl<'a> FrameShading<'a> {
@@ -116,7 +119,10 @@ impl<'a> FrameShading<'a> {
                 normal: scene.polygons[id].normal,
             })
             .collect();
-        let added = (0..lights).filter(|&l| direct[l]).collect();
+        let added: Vec<usize> = (0..lights).filter(|&l| direct[l]).collect();
+        let points_only = added
+            .iter()
+            .all(|&l| matches!(scene.lights[l], Light::Point(_)));
         FrameShading {
             scene,
             view,
@@ -125,6 +131,7 @@ impl<'a> FrameShading<'a> {
             environments,
             looks,
             added,
+            points_only,
         }
     }
 
@@ -265,13 +272,82 @@ impl<'a> FrameShading<'a> {
         visibility: &Visibility,
     ) {
         let reflectance = look.material.reflectance();
-        for (i, (s, r)) in run.iter().zip(out).enumerate() {
+        // Only Phong's lobe reads the direction to the eye: without it, its square
+        // root and division are left out (the radiance is the same, bit for bit).
+        let glossy = reflectance.specular != Vec3::ZERO;
+        let mut done = 0;
+        if !glossy && self.points_only {
+            done = run.len() / 4 * 4;
+            self.shade_lambert_lanes(
+                band,
+                first,
+                &run[..done],
+                look,
+                &mut out[..done],
+                visibility,
+            );
+        }
+        for (i, (s, r)) in run.iter().zip(out.iter_mut()).enumerate().skip(done) {
             let to_eye = self.view.eye - s.position;
             let front = look.normal.dot(to_eye) > 0.0;
-            let point = surface_point(s, s.normal.as_dvec3(), to_eye, front);
+            let point = SurfacePoint {
+                position: s.position,
+                normal: if front {
+                    s.normal.as_dvec3()
+                } else {
+                    -s.normal.as_dvec3()
+                },
+                to_eye: if glossy { to_eye.normalize() } else { to_eye },
+            };
             let lit = self.phong(&point, &reflectance, band, first + i, visibility);
             // The environment's share is zero; adding it keeps the sum's rounding.
             *r = look.emitted(front) + lit + Vec3::ZERO;
+        }
+    }
+
+    /// `shade_plain_phong` for a Lambertian polygon under point lights alone, four
+    /// samples at a time (`run` a multiple of four long): the lights' arithmetic in
+    /// lanes (`point_lanes`), the rest as the scalar model does it, so the radiance
+    /// is the same bit for bit.
+    fn shade_lambert_lanes(
+        &self,
+        band: &VisibleSurface,
+        first: usize,
+        run: &[Sample],
+        look: &PolygonLook,
+        out: &mut [Vec3],
+        visibility: &Visibility,
+    ) {
+        // The scalar model's (ρ/π + its zero specular lobe), once.
+        let diffuse = look.material.diffuse / std::f32::consts::PI + Vec3::ZERO;
+        for (c, (four, radiance)) in run.chunks_exact(4).zip(out.chunks_exact_mut(4)).enumerate() {
+            let k = first + 4 * c;
+            let mut front = [false; 4];
+            let points: [(DVec3, DVec3); 4] = std::array::from_fn(|i| {
+                let s = &four[i];
+                front[i] = look.normal.dot(self.view.eye - s.position) > 0.0;
+                let n = s.normal.as_dvec3();
+                (s.position, if front[i] { n } else { -n })
+            });
+            let lanes = Lanes::new(&points);
+            let mut lit = [Vec3::ZERO; 4];
+            for &l in &self.added {
+                let Light::Point(light) = &self.scene.lights[l] else {
+                    unreachable!("points_only: every added light is a point");
+                };
+                let factors = lanes.point_factors(light.position);
+                for i in 0..4 {
+                    let weight = self.weight(band, k + i, l, visibility, points[i].1);
+                    let reflected = match factors[i] {
+                        Some(t) => diffuse * (light.intensity * t as f32),
+                        None => Vec3::ZERO,
+                    };
+                    lit[i] += reflected * weight;
+                }
+            }
+            for i in 0..4 {
+                radiance[i] = look.emitted(front[i]) + lit[i] + Vec3::ZERO;
+            }
         }
     }
 
