@@ -1,8 +1,12 @@
-//! OpenEXR: linear RGB as 32-bit floats, written through the `exr` crate with
-//! lossless ZIP compression over blocks of 16 scan lines (the held linear references
-//! under golden/ are kept this way), the blocks compressed in parallel and written in
-//! order (the same bytes as one thread writes); any exposure is the viewer's
-//! business, as with PFM.
+//! OpenEXR: linear RGB as 32-bit floats, written through the `exr` crate
+//! uncompressed, in scan lines; any exposure is the viewer's business, as with PFM.
+//! Files in any of OpenEXR's compressions are read.
+//!
+//! Why uncompressed: a render's radiance is noise in its low bits, which lossless
+//! codecs barely shrink. On the point-lit box at 512 × 512 × 16 (3.15 MB of pixels),
+//! measured whole process against PFM's 0.07 s: ZIP over 16 lines 2.55 MB in 0.12 s,
+//! PIZ 2.10 MB in 0.10 s, RLE 2.70 MB in 0.09 s, uncompressed 0.07-0.08 s. An EXR
+//! costs about what a PFM does, and keeps its half floats, layers and readers.
 
 use super::Image;
 use crate::error::{Error, Result};
@@ -18,7 +22,7 @@ pub fn encode(image: &Image) -> Result<Vec<u8>> {
     });
     let exr = ::exr::prelude::Image::from_encoded_channels(
         (width, image.height as usize),
-        Encoding::SMALL_LOSSLESS,
+        Encoding::UNCOMPRESSED,
         channels,
     );
     let mut out = Cursor::new(Vec::new());
