@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::{polygon, scene_from_text};
+use common::{polygon, scene_from_text, unit_cube_walls};
 use glam::DVec3;
 use lumiere::internals::geometry::lambert_contour::form_factor;
 use lumiere::internals::radiosity::extended::{self, Extension};
@@ -1027,26 +1027,7 @@ fn a_texture_scales_what_a_mirror_shows_as_it_scales_the_wall() {
         let mut text = format!(
             "[camera]\neye = [0.2, 0.5, 0.15]\nlook_at = [1.0, 0.45, 0.7]\nfov_y = 70.0\nwidth = 32\nheight = 32\n\n[render]\nsupersample = 1\n\n[global]\nmethod = \"two-pass\"\n\n[radiosity]\nsolver = \"gathering\"\nelement_size = 0.25\n\n[materials.lamp]\nemission = [4.0, 4.0, 4.0]\n\n[materials.mirror]\nmirror = [0.8, 0.8, 0.8]\n\n[materials.wall]\ndiffuse = [0.5, 0.4, 0.3]\n{texture}\n"
         );
-        for axis in 0..3 {
-            let mut inward = DVec3::ZERO;
-            inward[axis] = 1.0;
-            let mut far = DVec3::ONE;
-            far[axis] = 0.0;
-            let mut near = DVec3::ZERO;
-            near[axis] = 1.0;
-            text += &polygon(
-                &format!("low{axis}"),
-                "wall",
-                rectangle(DVec3::ZERO, far),
-                inward,
-            );
-            text += &polygon(
-                &format!("high{axis}"),
-                "wall",
-                rectangle(near, DVec3::ONE),
-                -inward,
-            );
-        }
+        text += &unit_cube_walls("wall");
         text += &polygon(
             "lamp",
             "lamp",

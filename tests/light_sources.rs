@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::{error_line, polygon, scene_from_text};
+use common::{error_line, polygon, scene_from_text, unit_cube_walls};
 use glam::{DVec3, Vec3};
 use lumiere::internals::radiosity;
 use lumiere::{Renderer, Scene};
@@ -173,26 +173,7 @@ fn lit_cube(solver: &str) -> Scene {
     let mut text = format!(
         "{CAMERA}[radiosity]\nsolver = \"{solver}\"\nresolution = 128\nelement_size = 0.125\npatch_size = 0.25\ntolerance = 1e-9\nunshot = 1e-5\nmax_steps = 100000\n\n[materials.wall]\ndiffuse = [0.5, 0.5, 0.5]\n\n[[lights]]\ntype = \"point\"\nposition = [0.5, 0.5, 0.5]\nintensity = [1.0, 1.0, 1.0]\n\n"
     );
-    for axis in 0..3 {
-        let mut inward = DVec3::ZERO;
-        inward[axis] = 1.0;
-        let mut far = DVec3::ONE;
-        far[axis] = 0.0;
-        let mut near = DVec3::ZERO;
-        near[axis] = 1.0;
-        text += &polygon(
-            &format!("low{axis}"),
-            "wall",
-            rectangle(DVec3::ZERO, far),
-            inward,
-        );
-        text += &polygon(
-            &format!("high{axis}"),
-            "wall",
-            rectangle(near, DVec3::ONE),
-            -inward,
-        );
-    }
+    text += &unit_cube_walls("wall");
     scene_from_text(&text, &[])
 }
 

@@ -78,3 +78,30 @@ pub fn polygon(name: &str, material: &str, corners: [DVec3; 4], facing: DVec3) -
         list.join(", ")
     )
 }
+
+/// The six walls of the unit cube [0, 1]³ as scene-file polygons of `material`,
+/// facing in (named low0, high0, low1, …).
+pub fn unit_cube_walls(material: &str) -> String {
+    let mut text = String::new();
+    for axis in 0..3 {
+        let corner = |u: f64, v: f64, at: f64| {
+            let mut p = [0.0; 3];
+            p[(axis + 1) % 3] = u;
+            p[(axis + 2) % 3] = v;
+            p[axis] = at;
+            DVec3::from_array(p)
+        };
+        let mut inward = DVec3::ZERO;
+        inward[axis] = 1.0;
+        for (name, at, facing) in [("low", 0.0, inward), ("high", 1.0, -inward)] {
+            let corners = [
+                corner(0.0, 0.0, at),
+                corner(1.0, 0.0, at),
+                corner(1.0, 1.0, at),
+                corner(0.0, 1.0, at),
+            ];
+            text += &polygon(&format!("{name}{axis}"), material, corners, facing);
+        }
+    }
+    text
+}
