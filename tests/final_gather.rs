@@ -417,3 +417,31 @@ fn a_gather_through_a_mirror_finds_the_mirrored_lamp() {
         assert!(error < 0.01, "at {x}: {found} against {exact}");
     }
 }
+
+/// The irradiance cache belongs to a view: a renderer sweeps it once for a camera,
+/// serves later frames (and the list of buffers) from it with the same image, and
+/// sweeps again when the camera moves.
+#[test]
+fn the_cache_is_swept_once_per_camera() {
+    let scene = entry(
+        "irradiance-caching",
+        &[
+            "camera.width=24",
+            "camera.height=24",
+            "render.supersample=1",
+            "global.final_gather.rays=64",
+        ],
+    );
+    let mut renderer = Renderer::new(scene.clone());
+    let first = renderer.render().unwrap().pixels;
+    assert_eq!(renderer.irradiance_caches_swept(), 1);
+    let again = renderer.render().unwrap().pixels;
+    renderer.available_buffers().unwrap();
+    assert_eq!(renderer.irradiance_caches_swept(), 1);
+    assert!(first == again, "the same view, another image");
+    let mut camera = scene.camera.clone();
+    camera.eye += DVec3::new(40.0, 0.0, 0.0);
+    renderer.set_camera(camera);
+    renderer.render().unwrap();
+    assert_eq!(renderer.irradiance_caches_swept(), 2);
+}

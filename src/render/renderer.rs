@@ -53,6 +53,10 @@ pub struct Renderer {
     /// The final gather over the whole solution (made with it, before its direct
     /// part is taken out for display).
     final_gather: Mutex<Option<Arc<FinalGather>>>,
+    /// The irradiance cache last swept, and the camera and gather it was swept
+    /// for: frames from the same view reuse it.
+    view_gather: Mutex<Option<(Camera, Arc<ViewGather>)>>,
+    swept_caches: AtomicUsize,
     environments: Mutex<Option<EnvironmentMaps>>,
     /// The scene for rays (polygons, and spheres as quadrics or not).
     traced: Mutex<Option<(bool, Arc<TracedScene>)>>,
@@ -77,6 +81,8 @@ impl Renderer {
             radiosity: Mutex::new(None),
             second_pass: Mutex::new(None),
             final_gather: Mutex::new(None),
+            view_gather: Mutex::new(None),
+            swept_caches: AtomicUsize::new(0),
             environments: Mutex::new(None),
             traced: Mutex::new(None),
             captures: true,
@@ -388,16 +394,33 @@ impl Renderer {
             }
         };
         let gather = self.final_gather.lock().expect("no poisoned lock").clone();
-        let view_gather = gather.map(|gather| {
-            let view = crate::raster::View::new(
-                &self.scene.camera,
-                self.scene.camera.width,
-                self.scene.camera.height,
-            );
-            let cache = IrradianceCache::sweep(&self.scene, &gather, &view);
-            Arc::new(ViewGather { gather, cache })
-        });
+        let view_gather = gather.map(|gather| self.view_gather(gather));
         Ok(Integrator::Radiosity(solution, Some(second), view_gather))
+    }
+
+    /// The irradiance cache of `gather` for the camera: swept the first time a
+    /// frame asks, again only when the camera or the gather changes.
+    fn view_gather(&self, gather: Arc<FinalGather>) -> Arc<ViewGather> {
+        let mut slot = self.view_gather.lock().expect("no poisoned lock");
+        if let Some((camera, kept)) = slot.as_ref()
+            && *camera == self.scene.camera
+            && Arc::ptr_eq(&kept.gather, &gather)
+        {
+            return kept.clone();
+        }
+        let camera = &self.scene.camera;
+        let view = crate::raster::View::new(camera, camera.width, camera.height);
+        let cache = IrradianceCache::sweep(&self.scene, &gather, &view);
+        self.swept_caches.fetch_add(1, Ordering::Relaxed);
+        let made = Arc::new(ViewGather { gather, cache });
+        *slot = Some((camera.clone(), made.clone()));
+        made
+    }
+
+    /// How many times an irradiance cache was swept (a view-dependent pass: again
+    /// for each new camera).
+    pub fn irradiance_caches_swept(&self) -> usize {
+        self.swept_caches.load(Ordering::Relaxed)
     }
 
     /// The final gather `[global.final_gather]` asks for, over `solution` (whole).

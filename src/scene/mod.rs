@@ -41,7 +41,7 @@ use std::sync::Arc;
 pub use crate::settings::{RenderSettings, ShadingMode, ShadowSettings};
 
 /// A camera as the scene file gives it: a pinhole looking from `eye` to `look_at`.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
     /// The centre of projection.
     pub eye: DVec3,
