@@ -49,13 +49,7 @@ pub fn reflectance_at(scene: &Scene, hit: &SurfaceHit, to_eye: DVec3) -> Reflect
 pub fn diffuse_texture_scale(scene: &Scene, hit: &SurfaceHit, to_eye: DVec3) -> Option<Vec3> {
     let material = &scene.materials[hit.material];
     material.diffuse_texture?;
-    let textured = reflectance_at(scene, hit, to_eye).diffuse;
-    let ratio = |t: f32, plain: f32| if plain > 0.0 { t / plain } else { 0.0 };
-    Some(Vec3::new(
-        ratio(textured.x, material.diffuse.x),
-        ratio(textured.y, material.diffuse.y),
-        ratio(textured.z, material.diffuse.z),
-    ))
+    Some(material.diffuse_scale(reflectance_at(scene, hit, to_eye).diffuse))
 }
 
 /// Radiance towards `to_eye` from the lights `lit` selects, each shadowed by rays:

@@ -28,8 +28,8 @@
 //!
 //! Choices left open: the frustum is opened at the first reflection from the eye;
 //! a glossy surface met by one of its rays reflects along its mirror direction
-//! alone (frusta within frusta multiply the rays by N² at each level); panes are thin (the transmitted ray goes
-//! straight on); where a ray lands the solution is read as `SolutionRadiance` reads
+//! alone (frusta within frusta multiply the rays by N² at each level); panes are
+//! thin (the transmitted ray goes straight on); where a ray lands the solution is read as `SolutionRadiance` reads
 //! it, its reflected part scaled by the diffuse texture there, as the scan-line
 //! pass scales it at samples.
 
@@ -172,28 +172,19 @@ impl SecondPass {
         let (k_s, k_t) = (material.mirror, material.transmittance);
         if spawn(k_s) {
             let r = (incident - 2.0 * incident.dot(normal) * normal).normalize();
+            let ray = |d: DVec3| self.ray(scene, position, d, polygon, depth, weight * k_s, stream);
             radiance += k_s
                 * match &self.frusta[index] {
                     Some(frustum) if depth == 1 => {
                         let turn = Stream::new(FRUSTUM_SEED, stream).next_f64() * TAU;
-                        let mut gathered = Vec3::ZERO;
-                        for (d, w) in frustum.rays(r, turn) {
+                        frustum
+                            .rays(r, turn)
                             // Below the horizon: nothing (the weight stays counted).
-                            if d.dot(normal) > 0.0 {
-                                gathered += self.ray(
-                                    scene,
-                                    position,
-                                    d,
-                                    polygon,
-                                    depth,
-                                    weight * k_s,
-                                    stream,
-                                ) * w as f32;
-                            }
-                        }
-                        gathered
+                            .filter(|(d, _)| d.dot(normal) > 0.0)
+                            .map(|(d, w)| ray(d) * w as f32)
+                            .sum()
                     }
-                    _ => self.ray(scene, position, r, polygon, depth, weight * k_s, stream),
+                    _ => ray(r),
                 };
         }
         if spawn(k_t) {

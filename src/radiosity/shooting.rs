@@ -33,6 +33,8 @@ pub struct Shooting {
     pub direct: Vec<Vec3>,
     /// Per patch, whether its emission has been shot.
     emission_shot: Vec<bool>,
+    /// The power the solve started with, bands summed (`Mesh::source_power`).
+    source_power: f64,
     /// Steps taken.
     pub steps: usize,
 }
@@ -59,6 +61,7 @@ impl Shooting {
             unshot: mesh.patch_sources(),
             direct: mesh.elements.iter().map(|e| e.received).collect(),
             emission_shot: vec![false; mesh.patches.len()],
+            source_power: mesh.source_power().element_sum() as f64,
             steps: 0,
         }
     }
@@ -74,11 +77,10 @@ impl Shooting {
 
     /// Unshot power over the power the solve started with (bands summed).
     pub fn unshot_fraction(&self, mesh: &Mesh) -> f64 {
-        let emitted = mesh.source_power().element_sum() as f64;
-        if emitted == 0.0 {
+        if self.source_power == 0.0 {
             return 0.0;
         }
-        self.unshot_power(mesh).element_sum() as f64 / emitted
+        self.unshot_power(mesh).element_sum() as f64 / self.source_power
     }
 
     /// One step: the patch with the most unshot power shoots. Returns false when

@@ -230,10 +230,7 @@ impl Renderer {
     /// progress shown, say), so that it is not solved again.
     pub fn set_radiosity_solution(&mut self, solution: Arc<Solution>) {
         *self.final_gather.lock().expect("no poisoned lock") = self.final_gather_over(&solution);
-        let solution = match (exact_direct(&self.scene), solution.indirect()) {
-            (true, Some(indirect)) => Arc::new(indirect),
-            _ => solution.without_light_sources().map_or(solution, Arc::new),
-        };
+        let solution = self.drawn_part(&solution).map_or(solution, Arc::new);
         *self.radiosity.lock().expect("no poisoned lock") = Some(solution);
         *self.second_pass.lock().expect("no poisoned lock") = None;
     }
@@ -435,18 +432,29 @@ impl Renderer {
         )))
     }
 
-    /// The solution as frames draw it: without its direct part when the second pass
-    /// computes direct light exactly; else without the direct light of the point,
-    /// spot, distant and sphere lights, which every sample adds itself.
+    /// The solution as frames draw it (`drawn_part`); with exact direct light, an
+    /// error when the solution kept no direct part to take out.
     fn drawn(&self, solution: radiosity::Solution) -> Result<radiosity::Solution> {
-        if !exact_direct(&self.scene) {
-            return Ok(solution.without_light_sources().unwrap_or(solution));
-        }
-        solution.indirect().ok_or_else(|| {
-            Error::Radiosity(
+        match self.drawn_part(&solution) {
+            Some(drawn) => Ok(drawn),
+            None if exact_direct(&self.scene) => Err(Error::Radiosity(
                 "global.exact_direct needs the solution's direct part, which adaptive subdivision does not keep: leave `subdivide` out".into(),
-            )
-        })
+            )),
+            None => Ok(solution),
+        }
+    }
+
+    /// What frames draw of `solution`, where it is not the solution itself: its
+    /// indirect part when the second pass computes the direct light exactly; else
+    /// the solution without the direct light of the point, spot, distant and
+    /// sphere lights, which every sample adds itself. `None`: nothing to take out
+    /// (or, with exact direct light, no direct part kept).
+    fn drawn_part(&self, solution: &radiosity::Solution) -> Option<radiosity::Solution> {
+        if exact_direct(&self.scene) {
+            solution.indirect()
+        } else {
+            solution.without_light_sources()
+        }
     }
 
     /// The shadow pre-passes of the lights `direct` selects (`None` for the others

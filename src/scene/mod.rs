@@ -111,6 +111,17 @@ pub struct Bump {
 }
 
 impl Material {
+    /// What a texture multiplies its diffuse reflectance by, per band, where the
+    /// textured reflectance is `textured` (0 in a band it does not reflect).
+    pub fn diffuse_scale(&self, textured: Vec3) -> Vec3 {
+        let ratio = |t: f32, plain: f32| if plain > 0.0 { t / plain } else { 0.0 };
+        Vec3::new(
+            ratio(textured.x, self.diffuse.x),
+            ratio(textured.y, self.diffuse.y),
+            ratio(textured.z, self.diffuse.z),
+        )
+    }
+
     /// Whether it emits.
     pub fn is_emitter(&self) -> bool {
         self.emission.max_element() > 0.0

@@ -288,15 +288,10 @@ impl<'a> FrameShading<'a> {
             );
         }
         for (i, (s, r)) in run.iter().zip(out.iter_mut()).enumerate().skip(done) {
-            let to_eye = self.view.eye - s.position;
-            let front = look.normal.dot(to_eye) > 0.0;
+            let (_, to_eye, front) = self.seen(s);
             let point = SurfacePoint {
                 position: s.position,
-                normal: if front {
-                    s.normal.as_dvec3()
-                } else {
-                    -s.normal.as_dvec3()
-                },
+                normal: eye_side(s.normal.as_dvec3(), front),
                 to_eye: if glossy { to_eye.normalize() } else { to_eye },
             };
             let lit = self.phong(&point, &reflectance, band, first + i, visibility);
@@ -325,9 +320,8 @@ impl<'a> FrameShading<'a> {
             let mut front = [false; 4];
             let points: [(DVec3, DVec3); 4] = std::array::from_fn(|i| {
                 let s = &four[i];
-                front[i] = look.normal.dot(self.view.eye - s.position) > 0.0;
-                let n = s.normal.as_dvec3();
-                (s.position, if front[i] { n } else { -n })
+                front[i] = self.seen(s).2;
+                (s.position, eye_side(s.normal.as_dvec3(), front[i]))
             });
             let lanes = Lanes::new(&points);
             let mut lit = [Vec3::ZERO; 4];
@@ -475,12 +469,7 @@ impl<'a> FrameShading<'a> {
         let material = self.scene.material_of(band.samples[k].polygon as usize);
         material.diffuse_texture?;
         let (reflectance, _) = textured_point(self.scene, self.view.eye, band, k, &self.tangents);
-        let ratio = |textured: f32, plain: f32| if plain > 0.0 { textured / plain } else { 0.0 };
-        Some(Vec3::new(
-            ratio(reflectance.diffuse.x, material.diffuse.x),
-            ratio(reflectance.diffuse.y, material.diffuse.y),
-            ratio(reflectance.diffuse.z, material.diffuse.z),
-        ))
+        Some(material.diffuse_scale(reflectance.diffuse))
     }
 
     /// Light `l`'s weight at sample `k`, shaded with unit `normal` (on the eye's
@@ -546,9 +535,16 @@ impl<'a> FrameShading<'a> {
 fn surface_point(s: &Sample, n: DVec3, to_eye: DVec3, front: bool) -> SurfacePoint {
     SurfacePoint {
         position: s.position,
-        normal: if front { n } else { -n },
+        normal: eye_side(n, front),
         to_eye: to_eye.normalize(),
     }
+}
+
+/// Unit normal `n` turned to the eye's side of a polygon seen from the `front` or
+/// from behind.
+#[inline(always)]
+fn eye_side(n: DVec3, front: bool) -> DVec3 {
+    if front { n } else { -n }
 }
 
 /// Unshadowed radiance leaving a point of `polygon` towards the eye, from light `l`.
