@@ -1,11 +1,12 @@
 //! Golden images: every catalogue entry rendered at its test size must match its
 //! references under golden/: <id>.png, the displayed image (a pixel fails when a
 //! channel differs by more than 1/255), and <id>.exr, the linear radiance in 32-bit
-//! floats, which keeps the dark end where shadows and radiosity live (a channel
-//! fails when it differs by more than a relative 1e-5 of the reference, with an
-//! absolute floor of 1e-6 of the reference's brightest channel). The test asserts no
-//! failing pixel in either. On failure, golden-failures/<id>.png shows expected |
-//! difference (×8) | actual.
+//! floats, which keeps the dark end where shadows and radiosity live: every channel
+//! must equal the reference bit for bit, so that work on speed proves it changed no
+//! output (the goldens are written uncompressed, and every operation behind them is
+//! IEEE-754 arithmetic or the platform's libm). The test asserts no failing pixel in
+//! either. On failure, golden-failures/<id>.png shows expected | difference (×8) |
+//! actual.
 //!
 //! Regenerate: `LUMIERE_UPDATE_GOLDEN=1 cargo test --release --test golden`. It
 //! rewrites both references and still fails, so that someone looks at each before
@@ -20,10 +21,6 @@ use std::path::{Path, PathBuf};
 
 /// Largest per-channel difference (in 1/255 steps) that still counts as equal.
 const CHANNEL_TOLERANCE: u8 = 1;
-/// Largest relative difference of a linear channel that still counts as equal.
-const RELATIVE_TOLERANCE: f32 = 1e-5;
-/// The absolute floor of that tolerance, as a share of the brightest channel.
-const FLOOR: f32 = 1e-6;
 
 fn main() {
     let args = Arguments::from_args();
@@ -122,34 +119,22 @@ fn check_linear(id: &str, image: &Image, path: &Path, regenerate: &str) -> Resul
         )
         .into());
     }
-    let brightest = expected
-        .pixels
-        .iter()
-        .flat_map(|p| p.to_array())
-        .filter(|v| v.is_finite())
-        .fold(0.0f32, |m, v| m.max(v.abs()));
-    let floor = FLOOR * brightest;
     let mut failing = 0;
     let mut worst = (0.0f32, 0usize);
     for (k, (e, a)) in expected.pixels.iter().zip(&image.pixels).enumerate() {
+        let (e, a) = (e.to_array(), a.to_array());
+        if (0..3).all(|c| e[c].to_bits() == a[c].to_bits()) {
+            continue;
+        }
+        failing += 1;
         let off = (0..3)
-            .map(|c| {
-                let (e, a) = (e[c], a[c]);
-                if e == a || (e.is_nan() && a.is_nan()) {
-                    0.0
-                } else {
-                    (e - a).abs() / (RELATIVE_TOLERANCE * e.abs()).max(floor)
-                }
-            })
+            .map(|c| (e[c] - a[c]).abs() / e[c].abs().max(f32::MIN_POSITIVE))
             .fold(
                 0.0f32,
                 |m, v| if v.is_nan() { f32::INFINITY } else { m.max(v) },
             );
-        if off > 1.0 {
-            failing += 1;
-            if off > worst.0 {
-                worst = (off, k);
-            }
+        if off >= worst.0 {
+            worst = (off, k);
         }
     }
     if failing == 0 {
@@ -157,8 +142,8 @@ fn check_linear(id: &str, image: &Image, path: &Path, regenerate: &str) -> Resul
     }
     let (x, y) = (worst.1 as u32 % image.width, worst.1 as u32 / image.width);
     Err(format!(
-        "{id}: {failing} pixels differ from the linear reference by more than a relative {RELATIVE_TOLERANCE} (worst at ({x}, {y}): {:?} against {:?}); if the change is intended, regenerate with `{regenerate}`",
-        image.pixels[worst.1], expected.pixels[worst.1]
+        "{id}: {failing} pixels differ from the linear reference in their bits (worst at ({x}, {y}), relative {:.2e}: {:?} against {:?}); if the change is intended, regenerate with `{regenerate}`",
+        worst.0, image.pixels[worst.1], expected.pixels[worst.1]
     )
     .into())
 }
