@@ -443,3 +443,49 @@ fn five_triangles_whose_pieces_grew() {
         [0.9644930989467639, 3.1979853792207398, 0.3080493516747084],
     );
 }
+
+/// A light's view crowded with 900 polygons is cut into windows before the removal
+/// (a face with more than 256 pieces is quartered, pieces crossing a seam clipped to
+/// each side): the shadows still agree with ray casting at every grid point, on the
+/// ground and on the triangles, which shade one another across the seams.
+#[test]
+fn a_crowded_light_view_cut_into_windows() {
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut polygons = vec![quad([
+        [-3.0, 0.0, -3.0],
+        [-3.0, 0.0, 3.0],
+        [3.0, 0.0, 3.0],
+        [3.0, 0.0, -3.0],
+    ])];
+    for k in 0..900 {
+        // Level triangles, each at its own height, so none interpenetrate.
+        let height = 0.5 + 1.5 * k as f64 / 900.0;
+        let centre = DVec3::new(5.0 * next() - 2.5, height, 5.0 * next() - 2.5);
+        let size = 0.1 + 0.25 * next();
+        let turn = std::f64::consts::TAU * next();
+        polygons.push(
+            (0..3)
+                .map(|i| {
+                    let a = turn - std::f64::consts::TAU * i as f64 / 3.0;
+                    centre + size * DVec3::new(a.cos(), 0.0, a.sin())
+                })
+                .collect(),
+        );
+    }
+    let light = DVec3::new(0.3, 6.0, 0.2);
+    let scene = scene_of(&polygons, light);
+    let (checked, wrong) = disagreements(&scene, light, 8);
+    assert!(checked > 20_000, "{checked} points");
+    assert!(
+        wrong.is_empty(),
+        "{} of {checked} points disagree with ray casting, first {:?}",
+        wrong.len(),
+        &wrong[..wrong.len().min(4)]
+    );
+}

@@ -27,7 +27,13 @@
 //! light through them with the source polygon's plane. A region with holes enters the
 //! eye's scan-line pass as one polygon whose contours are joined by doubled bridge
 //! edges, which the even-odd sweep ignores. Fragments smaller than 1e-9 of a face's
-//! area (debris of the clipper's perturbation) are dropped. Scene key:
+//! area (debris of the clipper's perturbation) are dropped. A face crowded with more
+//! than 256 polygons is first cut into four windows of the screen, recursively, each
+//! polygon crossing a window's edge clipped to it, and each window's polygons go
+//! through the removal above on their own: the removal compares the pieces of a list
+//! pairwise, so one list of n costs n², while windows of bounded size cost n in all
+//! (a screen subdivision in the manner of Warnock's, done before the removal; it
+//! changes the cost, not which parts are visible). Scene key:
 //! `[shadows] method = "shadow-polygons"`.
 
 use super::cube_faces::{FACES, face_view};
@@ -142,7 +148,7 @@ pub fn lit_polygons(scene: &Scene, light: DVec3) -> Vec<Vec<DetailPolygon>> {
                     Some(Piece::new(id as u32, vec![contour], screen.plane))
                 })
                 .collect();
-            hidden_surface(pieces)
+            visible_by_windows(pieces)
                 .into_iter()
                 .map(|piece| {
                     let polygon = &scene.polygons[piece.source as usize];
@@ -171,6 +177,64 @@ pub fn lit_polygons(scene: &Scene, light: DVec3) -> Vec<Vec<DetailPolygon>> {
         lit[source as usize].push(detail);
     }
     lit
+}
+
+/// Most pieces one window's removal takes before its window is cut into quarters.
+const WINDOW_PIECES: usize = 256;
+
+/// How many times a window may be quartered: 1024 / 2^8 = 4 units across at most.
+const DEEPEST: u32 = 8;
+
+/// The visible part of every piece, by screen-area subdivision: a window holding
+/// more than `WINDOW_PIECES` pieces is cut into four quarters, each piece reaching a
+/// quarter clipped to it; each window's pieces then go through Weiler & Atherton's
+/// removal on their own, literally. Without it the removal compares every piece with
+/// every window's clip polygon, which grows as n² (a million polygons would take
+/// hours); with it, as n. A face with fewer pieces is one window, as before.
+fn visible_by_windows(pieces: Vec<Piece>) -> Vec<Piece> {
+    let (lo, hi) = pieces.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p.bounds.0), hi.max(p.bounds.1)),
+    );
+    let sliver = 1e-9 * (FACE_SIZE as f64).powi(2);
+    window_of(pieces, lo, hi, 0, sliver)
+}
+
+fn window_of(pieces: Vec<Piece>, lo: DVec2, hi: DVec2, depth: u32, sliver: f64) -> Vec<Piece> {
+    if pieces.len() <= WINDOW_PIECES || depth == DEEPEST {
+        return hidden_surface(pieces);
+    }
+    let middle = 0.5 * (lo + hi);
+    let quarters = [
+        (lo, middle),
+        (DVec2::new(middle.x, lo.y), DVec2::new(hi.x, middle.y)),
+        (middle, hi),
+        (DVec2::new(lo.x, middle.y), DVec2::new(middle.x, hi.y)),
+    ];
+    quarters
+        .into_par_iter()
+        .flat_map_iter(|(qlo, qhi)| {
+            let within: Vec<Piece> = pieces
+                .iter()
+                .filter_map(|piece| clipped_to(piece, qlo, qhi, sliver))
+                .collect();
+            window_of(within, qlo, qhi, depth + 1, sliver)
+        })
+        .collect()
+}
+
+/// The part of `piece` inside the rectangle [lo, hi], if more than a sliver.
+fn clipped_to(piece: &Piece, lo: DVec2, hi: DVec2, sliver: f64) -> Option<Piece> {
+    let (plo, phi) = piece.bounds;
+    if plo.x >= hi.x || plo.y >= hi.y || phi.x <= lo.x || phi.y <= lo.y {
+        return None;
+    }
+    if plo.cmpge(lo).all() && phi.cmple(hi).all() {
+        return Some(piece.clone());
+    }
+    let rectangle = vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
+    let (within, _) = weiler_atherton::clip(&piece.region, &vec![rectangle]);
+    (area(&within) > sliver).then(|| piece.with_region(within))
 }
 
 /// Weiler & Atherton's hidden-surface removal: the visible part of every piece.
