@@ -22,6 +22,7 @@
 //! asked for a light it cannot handle refuses it (`Unsupported`), naming both:
 //! nothing is silently unshadowed.
 
+mod cone_tree;
 pub mod cube_faces;
 mod depth_image;
 pub mod jittered_soft_shadows;

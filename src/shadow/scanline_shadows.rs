@@ -21,10 +21,13 @@
 //! its vertex directions, half-angle the widest of them), which has no azimuth wrap
 //! to handle; a cone wider than a hemisphere is taken as the whole sphere. The slab
 //! stops a relative 1e-6 short of the light's own distance to R's plane (points level
-//! with the light project to infinity). Pruning changes only the cost: `prune =
+//! with the light project to infinity). A bounding hierarchy over the cones
+//! (`cone_tree`) hands each receiver the casters whose cones may overlap its own, so
+//! the pairwise test is not run n² times. Pruning changes only the cost: `prune =
 //! false` gives the same image. Shadow polygons are projected only onto receivers
 //! the eye sees somewhere: the others are never scanned out. Scene key: `[shadows] method = "scanline"`.
 
+use super::cone_tree::ConeTree;
 use super::receivers::ReceiverScreens;
 use super::{BandShadows, FrameShadows, LightShadows, per_sample};
 use crate::geometry::central_projection::onto_plane;
@@ -117,43 +120,64 @@ pub struct ScanlineShadows {
     light: DVec3,
     prune: bool,
     cones: Vec<Cone>,
+    /// The cones' bounding hierarchy, which finds each receiver's candidate casters.
+    tree: ConeTree,
     lists: Vec<OnceLock<Vec<Vec<DVec3>>>>,
 }
 
 impl ScanlineShadows {
     pub fn new(scene: &Scene, light: DVec3, prune: bool) -> ScanlineShadows {
+        let cones: Vec<Cone> = scene
+            .polygons
+            .par_iter()
+            .map(|p| Cone::of(p, light))
+            .collect();
+        let bounds: Vec<(DVec3, f64)> = cones.iter().map(|c| (c.axis, c.half_angle)).collect();
         ScanlineShadows {
             light,
             prune,
-            cones: scene.polygons.iter().map(|p| Cone::of(p, light)).collect(),
+            tree: ConeTree::new(if prune { &bounds } else { &[] }),
+            cones,
             lists: scene.polygons.iter().map(|_| OnceLock::new()).collect(),
         }
     }
 
     /// Receiver `r`'s shadow polygons (world space, on its plane).
     pub fn shadow_polygons(&self, scene: &Scene, r: usize) -> &[Vec<DVec3>] {
-        self.lists[r].get_or_init(|| project_onto(scene, self.light, &self.cones, self.prune, r))
+        self.lists[r].get_or_init(|| project_onto(scene, self.light, self.casters(r), r))
+    }
+
+    /// The casters that may shadow receiver `r`, in the scene's order: with pruning,
+    /// those whose cone overlaps r's (the tree finds the candidates, the pairwise
+    /// test decides), else every polygon but r.
+    fn casters(&self, r: usize) -> Vec<u32> {
+        if !self.prune {
+            return (0..self.cones.len() as u32)
+                .filter(|&c| c as usize != r)
+                .collect();
+        }
+        let cone = &self.cones[r];
+        let mut casters = Vec::new();
+        self.tree.candidates(cone.axis, cone.half_angle, |c| {
+            if c as usize != r && cone.overlaps(&self.cones[c as usize]) {
+                casters.push(c);
+            }
+        });
+        // The scene's order, as the shadow polygons were always listed.
+        casters.sort_unstable();
+        casters
     }
 }
 
 /// The shadow polygons every caster throws on receiver `r`'s plane: each caster
 /// clipped to the slab between the light and R's plane and projected from the light.
-fn project_onto(
-    scene: &Scene,
-    light: DVec3,
-    cones: &[Cone],
-    prune: bool,
-    r: usize,
-) -> Vec<Vec<DVec3>> {
+fn project_onto(scene: &Scene, light: DVec3, casters: Vec<u32>, r: usize) -> Vec<Vec<DVec3>> {
     let receiver = &scene.polygons[r];
     let origin = receiver.vertices[0].position;
-    scene
-        .polygons
-        .iter()
-        .enumerate()
-        .filter(|&(c, _)| c != r && (!prune || cones[r].overlaps(&cones[c])))
-        .filter_map(|(_, caster)| {
-            let corners: Vec<DVec3> = caster.positions().collect();
+    casters
+        .into_iter()
+        .filter_map(|c| {
+            let corners: Vec<DVec3> = scene.polygons[c as usize].positions().collect();
             onto_plane(&corners, light, origin, receiver.normal)
         })
         .collect()
