@@ -296,7 +296,8 @@ impl Removal {
                 continue;
             }
             let (plo, phi) = piece.bounds;
-            if plo.x > hi.x || plo.y > hi.y || phi.x < lo.x || phi.y < lo.y {
+            let boxes_apart = plo.x > hi.x || plo.y > hi.y || phi.x < lo.x || phi.y < lo.y;
+            if boxes_apart || weiler_atherton::apart(&piece.region, &clipper.region) {
                 outside.push(piece);
                 continue;
             }
