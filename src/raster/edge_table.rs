@@ -13,6 +13,11 @@
 //! the active list's sort) and, beside them, their indices sorted by first row: a
 //! row's bucket is a range of that list, so the table's size does not grow with the
 //! frame's height.
+//!
+//! The attributes over z, 22 numbers an edge, are kept beside the edges rather than
+//! in them: a table built for coverage alone (the shadow or detail polygons on a
+//! receiver, which only say where they lie) leaves them out, and a receiver holding
+//! a million shadow polygons then takes 48 bytes an edge instead of 224.
 
 use super::ScreenPolygon;
 use super::project::{ATTRIBUTES, Attributes};
@@ -32,11 +37,16 @@ pub struct Edge {
     /// x at the first row's centre, and per row, in 32.32 fixed point.
     pub x: i64,
     pub dx: i64,
-    /// ζ and attributes over z at the first row, and per row.
+    /// ζ at the first row, and per row.
     pub zeta: f64,
     pub dzeta: f64,
-    pub attributes: Attributes,
-    pub dattributes: Attributes,
+}
+
+/// An edge's attributes over z at its first row, and per row.
+#[derive(Clone, Debug)]
+struct EdgeAttributes {
+    at_first_row: Attributes,
+    per_row: Attributes,
 }
 
 impl Edge {
@@ -54,17 +64,6 @@ impl Edge {
     /// ζ `rows` rows below the first row (evaluated, like the attributes).
     pub fn zeta_at(&self, rows: u32) -> f64 {
         self.zeta + rows as f64 * self.dzeta
-    }
-
-    /// The attributes over z `rows` rows below the first row (evaluated, not
-    /// stepped: the same value whichever row a sweep started from).
-    pub fn attributes_at(&self, rows: u32) -> Attributes {
-        let k = rows as f64;
-        let mut attributes = self.attributes;
-        for (a, d) in attributes.iter_mut().zip(self.dattributes) {
-            *a += k * d;
-        }
-        attributes
     }
 }
 
@@ -87,13 +86,27 @@ impl Crossing {
 
 pub struct EdgeTable {
     pub edges: Vec<Edge>,
+    /// The attributes of each edge, by index; empty for a table of coverage alone.
+    attributes: Vec<EdgeAttributes>,
     /// Edge indices sorted by first row (stable): the buckets, end to end.
     by_first_row: Vec<u32>,
 }
 
 impl EdgeTable {
     pub fn build(polygons: &[ScreenPolygon], height: u32) -> EdgeTable {
-        let mut edges = Vec::new();
+        EdgeTable::with(polygons, height, true)
+    }
+
+    /// A table of where the polygons lie, without their attributes: for sweeps that
+    /// only ask which polygons cover a span (`spans_inside`), not what they carry.
+    pub fn coverage(polygons: &[ScreenPolygon], height: u32) -> EdgeTable {
+        EdgeTable::with(polygons, height, false)
+    }
+
+    fn with(polygons: &[ScreenPolygon], height: u32, with_attributes: bool) -> EdgeTable {
+        let corners = polygons.iter().map(|p| p.vertices.len()).sum();
+        let mut edges = Vec::with_capacity(corners);
+        let mut attributes = Vec::with_capacity(if with_attributes { corners } else { 0 });
         for (index, polygon) in polygons.iter().enumerate() {
             let n = polygon.vertices.len();
             for i in 0..n {
@@ -116,12 +129,18 @@ impl EdgeTable {
                 let t = (first + 0.5 - top.y) / span;
                 let dxdy = (bottom.x - top.x) / span;
                 let x = top.x + (first + 0.5 - top.y) * dxdy;
-                let mut attributes = [0.0; ATTRIBUTES];
-                let mut dattributes = [0.0; ATTRIBUTES];
-                for k in 0..ATTRIBUTES {
-                    let (p, q) = (top.attributes_over_z[k], bottom.attributes_over_z[k]);
-                    attributes[k] = p + (q - p) * t;
-                    dattributes[k] = (q - p) / span;
+                if with_attributes {
+                    let mut at_first_row = [0.0; ATTRIBUTES];
+                    let mut per_row = [0.0; ATTRIBUTES];
+                    for k in 0..ATTRIBUTES {
+                        let (p, q) = (top.attributes_over_z[k], bottom.attributes_over_z[k]);
+                        at_first_row[k] = p + (q - p) * t;
+                        per_row[k] = (q - p) / span;
+                    }
+                    attributes.push(EdgeAttributes {
+                        at_first_row,
+                        per_row,
+                    });
                 }
                 edges.push(Edge {
                     polygon: index as u32,
@@ -131,8 +150,6 @@ impl EdgeTable {
                     dx: to_fixed(dxdy.clamp(-MAX_DX, MAX_DX)),
                     zeta: top.zeta + (bottom.zeta - top.zeta) * t,
                     dzeta: (bottom.zeta - top.zeta) / span,
-                    attributes,
-                    dattributes,
                 });
             }
         }
@@ -140,8 +157,22 @@ impl EdgeTable {
         by_first_row.sort_by_key(|&k| edges[k as usize].first_row);
         EdgeTable {
             edges,
+            attributes,
             by_first_row,
         }
+    }
+
+    /// Edge `k`'s attributes over z `rows` rows below its first row (evaluated, not
+    /// stepped: the same value whichever row a sweep started from). Only for a
+    /// table built with them.
+    pub fn attributes_at(&self, k: usize, rows: u32) -> Attributes {
+        let edge = &self.attributes[k];
+        let rows = rows as f64;
+        let mut attributes = edge.at_first_row;
+        for (a, d) in attributes.iter_mut().zip(edge.per_row) {
+            *a += rows * d;
+        }
+        attributes
     }
 
     /// The edges whose first row is `row`, in the order their polygons gave them.

@@ -466,8 +466,9 @@ fn fill_run<S, W: Fn(&ScreenPolygon, f64, &Attributes, f64) -> S, const ATTRIBUT
         re.zeta_at(span.row - re.first_row),
     );
     let attributes_of = |k: usize| {
-        let edge = edge_of(k);
-        edge.attributes_at(span.row - edge.first_row)
+        let index = span.active[k].0 as usize;
+        let first_row = span.table.edges[index].first_row;
+        span.table.attributes_at(index, span.row - first_row)
     };
     let (la, ra) = if ATTRIBUTES_USED {
         (attributes_of(c.left), attributes_of(c.right))

@@ -50,7 +50,7 @@ impl<F: Fn(usize) -> Vec<ScreenPolygon> + Sync> ReceiverScreens<F> {
         let projected = self.slots[r].get_or_init(|| {
             let polygons = (self.project)(r);
             (!polygons.is_empty()).then(|| Projected {
-                table: EdgeTable::build(&polygons, self.height),
+                table: EdgeTable::coverage(&polygons, self.height),
                 ids: polygons.iter().map(|p| p.id).collect(),
             })
         });
