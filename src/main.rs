@@ -1,6 +1,11 @@
 use clap::Parser;
 use std::process::ExitCode;
 
+// The renderer allocates many small, short-lived lists (clipped polygons, contours,
+// spans): glibc's allocator took 12-20% of the time of the exact shadow methods.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() -> ExitCode {
     // Interrupted (Ctrl-C, SIGTERM): no temporary file or staging directory is left
     // behind, and the status says so (128 + SIGINT).

@@ -12,9 +12,19 @@ use super::Image;
 use crate::error::{Error, Result};
 use ::exr::prelude::{Encoding, SpecificChannels, Vec2, WritableImage};
 use glam::Vec3;
-use std::io::Cursor;
+use std::io::{Cursor, Seek, Write};
 
+/// The bytes of `image` as an OpenEXR file.
 pub fn encode(image: &Image) -> Result<Vec<u8>> {
+    let mut out = Cursor::new(Vec::new());
+    write(image, &mut out)?;
+    Ok(out.into_inner())
+}
+
+/// Streams `image` as an OpenEXR file into `out`, block by block: a second copy of
+/// the pixels, as bytes, would double the memory of a large render (8192 x 8192:
+/// 805 MB of pixels).
+pub fn write(image: &Image, out: impl Write + Seek) -> Result<()> {
     let width = image.width as usize;
     let channels = SpecificChannels::rgb(|at: Vec2<usize>| {
         let p = image.pixels[at.y() * width + at.x()];
@@ -25,11 +35,9 @@ pub fn encode(image: &Image) -> Result<Vec<u8>> {
         Encoding::UNCOMPRESSED,
         channels,
     );
-    let mut out = Cursor::new(Vec::new());
     exr.write()
-        .to_buffered(&mut out)
-        .map_err(|e| Error::image(format!("cannot encode OpenEXR: {e}")))?;
-    Ok(out.into_inner())
+        .to_buffered(out)
+        .map_err(|e| Error::image(format!("cannot encode OpenEXR: {e}")))
 }
 
 /// Largest side of an EXR file read: the largest image lumiere makes.

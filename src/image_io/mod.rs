@@ -129,9 +129,7 @@ pub fn save(image: &Image, path: &Path, exposure: f32) -> Result<()> {
     write_atomically_with(path, |out| match format {
         Format::Png => png::write(image, exposure, out),
         Format::Pfm => pfm::write(image, out).map_err(|e| Error::io(FileOp::Write, path, e)),
-        Format::Exr => Ok(out
-            .write_all(&exr::encode(image)?)
-            .map_err(|e| Error::io(FileOp::Write, path, e))?),
+        Format::Exr => exr::write(image, out),
     })
 }
 
