@@ -190,4 +190,21 @@ mod parallel_tests {
             image
         );
     }
+
+    /// A file saved as OpenEXR, streamed block by block, holds the bytes `encode`
+    /// makes in memory.
+    #[test]
+    fn a_saved_file_holds_the_encoded_bytes() {
+        let image = Image {
+            width: 70,
+            height: 41,
+            pixels: (0..70 * 41)
+                .map(|i| Vec3::new(i as f32 * 0.37, (i % 13) as f32, -(i as f32).sqrt()))
+                .collect(),
+        };
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("streamed.exr");
+        super::super::save(&image, &path, 1.0).unwrap();
+        assert!(std::fs::read(&path).unwrap() == encode(&image).unwrap());
+    }
 }
