@@ -22,8 +22,10 @@ pub struct RenderSettings {
     pub shading: ShadingMode,
     /// Radiance is multiplied by this before sRGB encoding (PNG output only).
     pub exposure: f32,
-    /// Samples per pixel along each axis (N × N on a regular grid, box filtered).
+    /// Samples per pixel along each axis (N × N, box filtered).
     pub supersample: u32,
+    /// Where a pixel's N × N samples lie.
+    pub sample_pattern: SamplePattern,
     /// Radiance of pixels where no surface is seen.
     pub background: glam::Vec3,
     /// An environment (index into `Scene::environments`) shown there instead.
@@ -34,6 +36,23 @@ pub struct RenderSettings {
     /// Pixel rows per band of the frame (0: chosen from a memory budget). The image
     /// does not depend on it; memory grows with it.
     pub band_rows: u32,
+}
+
+/// Where a pixel's N × N samples lie (`[render] sample_pattern`, `--sample-pattern`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+pub enum SamplePattern {
+    /// A regular N × N grid: the scan-line pass runs once on a grid N times finer
+    /// than the pixels.
+    #[default]
+    Regular,
+    /// N² samples on a rotated grid, one in each of the N² columns and rows of
+    /// sub-pixel cells (n-rooks): the frame made N² times with its projection
+    /// shifted by each sample's offset, and the frames averaged (Haeberli & Akeley's
+    /// accumulation buffer). An edge near the horizontal or the vertical is seen at
+    /// N² + 1 levels of coverage instead of N + 1.
+    RotatedGrid,
 }
 
 /// How shadows are computed (`[shadows] method`, `--shadows`).

@@ -3,7 +3,7 @@
 use anyhow::{Context, Result, bail};
 use lumiere::Renderer;
 use lumiere::internals::image_io::StagedDirectory;
-use lumiere::settings::{FormFactorMethod, ShadowMethod, Solver};
+use lumiere::settings::{FormFactorMethod, SamplePattern, ShadowMethod, Solver};
 use lumiere::{ImageFormat, catalogue, load_scene, write_atomically, write_image};
 use std::path::PathBuf;
 
@@ -22,9 +22,14 @@ pub struct Args {
     output: PathBuf,
     #[command(flatten)]
     size: super::ImageSize,
-    /// N x N samples per pixel on a regular grid, averaged (box filter).
+    /// N x N samples per pixel, averaged (box filter), on the grid `--sample-pattern`
+    /// names.
     #[arg(long)]
     supersample: Option<u32>,
+    /// Where a pixel's samples lie, overriding the scene's `[render] sample_pattern`:
+    /// `regular` (the default) or `rotated-grid` (N² frames shifted, averaged).
+    #[arg(long, value_enum)]
+    sample_pattern: Option<SamplePattern>,
     /// Shadow method, overriding the scene's `[shadows] method`.
     #[arg(long, value_enum)]
     shadows: Option<ShadowMethod>,
@@ -124,6 +129,10 @@ pub fn run(args: Args) -> Result<()> {
     sets.extend(args.size.sets());
     if let Some(n) = args.supersample {
         sets.push(format!("render.supersample={n}"));
+    }
+    if let Some(pattern) = args.sample_pattern {
+        let name = clap::ValueEnum::to_possible_value(&pattern).expect("no skipped variants");
+        sets.push(format!("render.sample_pattern=\"{}\"", name.get_name()));
     }
     if let Some(method) = args.shadows {
         let name = clap::ValueEnum::to_possible_value(&method).expect("no skipped variants");

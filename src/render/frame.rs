@@ -8,6 +8,7 @@ use crate::image_io::{Buffer, Image};
 use crate::raster::{EdgeTable, Visibility, rasterize_rows, sample_view, uv_gradients};
 use crate::scene::Scene;
 use crate::shading::FrameShading;
+use glam::DVec2;
 
 /// A frame: its linear radiance image and the buffers asked for.
 pub struct Frame {
@@ -41,12 +42,45 @@ pub fn band_rows(scene: &Scene) -> u32 {
 
 /// `scene`'s scan-line frame as `plan` has it made, with the buffers in `wanted`.
 pub(super) fn render_frame(scene: &Scene, plan: &FramePlan, wanted: &[String]) -> Result<Frame> {
+    render_pass(scene, plan, wanted, Pass::WHOLE)
+}
+
+/// One of the frames a frame is averaged from (the accumulation buffer's passes).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Pass {
+    /// Where this pass samples, from each sample's own position, in samples.
+    pub shift: DVec2,
+    /// This pass's number, and how many there are (for the progress told).
+    pub number: usize,
+    pub of: usize,
+}
+
+impl Pass {
+    /// The frame made once, unshifted.
+    const WHOLE: Pass = Pass {
+        shift: DVec2::ZERO,
+        number: 0,
+        of: 1,
+    };
+}
+
+/// `render_frame` for one pass: the view's projection shifted by `pass.shift`.
+pub(super) fn render_pass(
+    scene: &Scene,
+    plan: &FramePlan,
+    wanted: &[String],
+    pass: Pass,
+) -> Result<Frame> {
     let integrator = &plan.integrator;
     let direct = &plan.direct;
     let shadows = &plan.shadows;
     let mut buffers = FrameBuffers::new(scene, plan, wanted)?;
 
-    let view = sample_view(scene);
+    let mut view = sample_view(scene);
+    if pass.shift != DVec2::ZERO {
+        // The sample at p sees what the unshifted view shows at p + shift.
+        view.centre -= pass.shift;
+    }
     let polygons = integrator.draw_list(scene, &view, direct);
     let table = EdgeTable::build(&polygons, view.height);
     let gradients = uv_gradients(&polygons);
@@ -153,7 +187,7 @@ pub(super) fn render_frame(scene: &Scene, plan: &FramePlan, wanted: &[String]) -
         pixels.extend(pixels_of_band.pixels);
         samples = band.samples;
         if let Some(progress) = &plan.progress {
-            progress(last as f64 / height as f64);
+            progress((pass.number as f64 + last as f64 / height as f64) / pass.of as f64);
         }
         if plan.stopped() {
             return Err(Error::Stopped);

@@ -9,6 +9,7 @@
 //! shadowed light's method gives its visibility, shading gives radiance, and the box
 //! filter gives the band's pixels (and the buffers asked for take their rows).
 
+mod accumulation;
 mod buffers;
 pub mod capture;
 mod frame;

@@ -7,6 +7,7 @@
 //! Moving the camera invalidates none of it; moving a light, only that light's
 //! shadows; changing the shadow settings, every light's shadows.
 
+use super::accumulation::render_rotated_grid;
 use super::buffers::{BufferInfo, available};
 use super::capture::{face_cameras, without_objects};
 use super::frame::{Frame, render_frame};
@@ -21,7 +22,7 @@ use crate::global::two_pass::{self, SecondPass};
 use crate::image_io::Image;
 use crate::radiosity::{self, Solution};
 use crate::scene::{Camera, EnvironmentSource, Light, Scene};
-use crate::settings::{Filter, MediumMethod, ShadowMethod, ShadowSettings};
+use crate::settings::{Filter, MediumMethod, SamplePattern, ShadowMethod, ShadowSettings};
 use crate::shadow::{self, LightShadows, SceneOccluders, SharedWork};
 use crate::texture::Texels;
 use crate::texture::environment::EnvironmentMap;
@@ -290,6 +291,20 @@ impl Renderer {
         match &plan.integrator {
             Integrator::Whitted(traced, settings) => {
                 ray_traced::render(&self.scene, &plan, traced, settings, buffers)
+            }
+            _ if self.scene.render.sample_pattern == SamplePattern::RotatedGrid
+                && self.scene.render.supersample > 1 =>
+            {
+                if let Some(name) = buffers.first() {
+                    return Err(Error::invalid(
+                        "render.sample_pattern",
+                        format!(
+                            "render.sample_pattern: the buffer `{name}` is made on the regular grid's samples; the rotated grid averages {} frames and gives the image alone (use sample_pattern = \"regular\" for buffers)",
+                            self.scene.render.supersample.pow(2)
+                        ),
+                    ));
+                }
+                render_rotated_grid(&self.scene, &plan)
             }
             _ => render_frame(&self.scene, &plan, buffers),
         }

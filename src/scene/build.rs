@@ -50,6 +50,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         shading: file.render.shading,
         exposure: file.render.exposure as f32,
         supersample: file.render.supersample,
+        sample_pattern: file.render.sample_pattern,
         background: validate::colour("render.background", file.render.background)?,
         band_rows: file.render.band_rows,
         backdrop: None,

@@ -1,7 +1,7 @@
 //! The scene file as written in TOML (documented key by key in docs/scene-format.md).
 //! Unknown keys are errors; values are checked when the scene is built.
 
-use super::ShadingMode;
+use super::{SamplePattern, ShadingMode};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
@@ -399,6 +399,9 @@ pub struct RenderFile {
     pub exposure: f64,
     #[serde(default = "one_sample")]
     pub supersample: u32,
+    /// Where a pixel's samples lie: "regular" or "rotated-grid".
+    #[serde(default)]
+    pub sample_pattern: SamplePattern,
     #[serde(default)]
     pub background: Vec3File,
     /// Pixel rows per band of the frame; 0 chooses them from a memory budget.
@@ -421,6 +424,7 @@ impl Default for RenderFile {
             shading: phong(),
             exposure: one(),
             supersample: one_sample(),
+            sample_pattern: SamplePattern::Regular,
             background: [0.0; 3],
             band_rows: 0,
             backdrop: None,

@@ -38,7 +38,7 @@ use crate::texture::{Interpolation, Texture};
 use glam::{DMat4, DVec2, DVec3, Vec3};
 use std::sync::Arc;
 
-pub use crate::settings::{RenderSettings, ShadingMode, ShadowSettings};
+pub use crate::settings::{RenderSettings, SamplePattern, ShadingMode, ShadowSettings};
 
 /// A camera as the scene file gives it: a pinhole looking from `eye` to `look_at`.
 #[derive(Clone, Debug, PartialEq)]
