@@ -159,7 +159,10 @@ def test_a_moved_camera_renders_without_building_the_prepasses_again():
 
 
 def test_the_gil_is_released_while_rendering():
-    renderer = lumiere.Renderer(lumiere.load("cornell-box", **{"camera.width": 256, "camera.height": 256}))
+    # 512 x 512 at 2 x 2 samples: long enough (about 0.1 s on two cores) that the
+    # counter has time to run; 256 x 256 at one sample took 10 ms.
+    renderer = lumiere.Renderer(lumiere.load(
+        "cornell-box", **{"camera.width": 512, "camera.height": 512, "render.supersample": 2}))
     ticks = 0
     done = threading.Event()
 
