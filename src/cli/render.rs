@@ -131,12 +131,10 @@ pub fn run(args: Args) -> Result<()> {
         sets.push(format!("render.supersample={n}"));
     }
     if let Some(pattern) = args.sample_pattern {
-        let name = clap::ValueEnum::to_possible_value(&pattern).expect("no skipped variants");
-        sets.push(format!("render.sample_pattern=\"{}\"", name.get_name()));
+        sets.push(format!("render.sample_pattern=\"{}\"", name(&pattern)));
     }
     if let Some(method) = args.shadows {
-        let name = clap::ValueEnum::to_possible_value(&method).expect("no skipped variants");
-        sets.push(format!("shadows.method=\"{}\"", name.get_name()));
+        sets.push(format!("shadows.method=\"{}\"", name(&method)));
     }
     sets.extend(radiosity_sets(&args));
     let scene = load_scene(&args.scene, &sets)?;
@@ -289,12 +287,14 @@ fn refuse_shooting_options(args: &Args) -> Result<()> {
     Ok(())
 }
 
+/// An option's value as the scene file spells it.
+fn name(value: &impl clap::ValueEnum) -> String {
+    let value = value.to_possible_value().expect("no skipped variants");
+    value.get_name().to_string()
+}
+
 /// The radiosity options as scene-key overrides.
 fn radiosity_sets(args: &Args) -> Vec<String> {
-    fn name(value: &impl clap::ValueEnum) -> String {
-        let value = value.to_possible_value().expect("no skipped variants");
-        value.get_name().to_string()
-    }
     let mut sets = Vec::new();
     if let Some(s) = args.radiosity {
         sets.push(format!("radiosity.solver=\"{}\"", name(&s)));

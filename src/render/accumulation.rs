@@ -22,7 +22,7 @@ use glam::{DVec2, Vec3};
 
 /// The rotated grid of `n`² samples: each sample's offset from the pixel's centre, in
 /// pixels (each coordinate in (−½, ½)), in the order the frames are made.
-pub fn rotated_grid(n: u32) -> Vec<DVec2> {
+pub(super) fn rotated_grid(n: u32) -> Vec<DVec2> {
     let cells = f64::from(n * n);
     (0..n)
         .flat_map(|a| (0..n).map(move |b| (a, b)))
@@ -38,6 +38,8 @@ pub fn rotated_grid(n: u32) -> Vec<DVec2> {
 /// grid: one frame of one sample a pixel per sample, averaged in the order made.
 pub(super) fn render_rotated_grid(scene: &Scene, plan: &FramePlan) -> Result<Frame> {
     let offsets = rotated_grid(scene.render.supersample);
+    // The passes are frames of one sample a pixel, and everything a frame sizes (its
+    // view, bands, buffers) reads that from the scene: one copy of the scene a frame.
     let mut single = scene.clone();
     single.render.supersample = 1;
     let mut sum: Vec<[f64; 3]> = Vec::new();

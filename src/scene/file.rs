@@ -424,7 +424,7 @@ impl Default for RenderFile {
             shading: phong(),
             exposure: one(),
             supersample: one_sample(),
-            sample_pattern: SamplePattern::Regular,
+            sample_pattern: SamplePattern::default(),
             background: [0.0; 3],
             band_rows: 0,
             backdrop: None,
