@@ -38,6 +38,7 @@ pub mod export;
 pub mod internals;
 mod load;
 pub mod settings;
+pub mod viewer;
 
 // The crate's own paths (`crate::shadow::…`) name the modules behind the API.
 use internals::{
@@ -56,7 +57,7 @@ pub use image_io::{
     save as write_image, statistical_test, strip as comparison_strip, tolerance_check,
     write_atomically,
 };
-pub use load::{load_scene, scene_from_toml};
+pub use load::{load_scene, scene_from_files, scene_from_toml};
 pub use render::{BufferInfo, Frame, Prepasses, Renderer, render};
 pub use scene::{
     Camera, DistantLight, Light, LightKind, Material, Object, PointLight, Polygon, PolygonLight,

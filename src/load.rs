@@ -5,9 +5,10 @@
 use crate::catalogue;
 use crate::error::{Error, FileOp, Result};
 use crate::image_io::read_file;
-use crate::scene::resources::{Directory, InMemory, Layered, Resources};
+use crate::scene::resources::{Directory, InMemory, Layered, Resources, normalise};
 use crate::scene::{self, Scene};
 use crate::shadow;
+use std::collections::HashMap;
 use std::path::Path;
 
 /// Loads a scene named by a catalogue id, a path to a `.toml` scene file or a glTF
@@ -25,13 +26,7 @@ pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
     if matches!(extension.as_deref(), Some("gltf" | "glb")) {
-        let imported = scene::gltf::read(path)?;
-        let files = Box::new(InMemory(imported.files));
-        let mut scene = scene_from_parsed(imported.table, spec, Some(files), overrides)?;
-        let mut warnings = imported.warnings;
-        warnings.append(&mut scene.warnings);
-        scene.warnings = warnings;
-        Ok(scene)
+        scene_from_gltf(scene::gltf::read(path)?, spec, overrides)
     } else if spec.ends_with(".toml") || path.exists() {
         let bytes = read_file(path, FileOp::ReadScene)?;
         let text = String::from_utf8(bytes).map_err(|_| {
@@ -47,6 +42,81 @@ pub fn load_scene(spec: &str, overrides: &[String]) -> Result<Scene> {
         let table = catalogue::entry(spec)?.scene;
         scene_from_parsed(table, spec, None, overrides)
     }
+}
+
+/// A scene from files held in memory, by their paths relative to the folder of
+/// `main` (a page's chosen files; a program's): `main` is a scene file (`.toml`),
+/// a glTF 2.0 file (`.gltf`, `.glb`) or a Wavefront OBJ file (`.obj`, with its MTL
+/// and textures among the files; framed from +z under one point light), with
+/// `key=value` overrides applied in order. Files the scene names and `files` lacks
+/// are looked for in the catalogue.
+pub fn scene_from_files(
+    main: &str,
+    files: HashMap<String, Vec<u8>>,
+    overrides: &[String],
+) -> Result<Scene> {
+    let base = Path::new(main).parent().unwrap_or(Path::new(""));
+    let relative = |name: &str| {
+        let name = normalise(Path::new(name));
+        name.strip_prefix(base)
+            .ok()
+            .map(|p| p.to_string_lossy().into_owned())
+    };
+    let own: HashMap<String, Vec<u8>> = files
+        .into_iter()
+        .filter_map(|(name, bytes)| Some((relative(&name)?, bytes)))
+        .collect();
+    let name = relative(main).unwrap_or_else(|| main.to_string());
+    let Some(bytes) = own.get(&name) else {
+        return Err(Error::Scene(format!("{main}: not among the files given")));
+    };
+    let extension = Path::new(main)
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match extension.as_deref() {
+        Some("gltf" | "glb") => {
+            let own = InMemory(own);
+            let imported = scene::gltf::from_bytes(
+                own.read(Path::new(&name))?.as_slice(),
+                Path::new(main),
+                &own,
+            )?;
+            scene_from_gltf(imported, main, overrides)
+        }
+        Some("obj") => {
+            let own = InMemory(own);
+            let (table, warnings) =
+                scene::obj_scene::table(&name, &own).map_err(|e| Error::InScene {
+                    spec: main.to_string(),
+                    source: Box::new(e),
+                })?;
+            let mut scene = scene_from_parsed(table, main, Some(Box::new(own)), overrides)?;
+            scene.warnings.splice(0..0, warnings);
+            Ok(scene)
+        }
+        Some("toml") => {
+            let text = String::from_utf8(bytes.clone())
+                .map_err(|_| Error::Scene(format!("{main}: not a text file (UTF-8)")))?;
+            scene_from_text(&text, main, Some(Box::new(InMemory(own))), overrides)
+        }
+        _ => Err(Error::Scene(format!(
+            "{main}: a scene is a .toml, .gltf, .glb or .obj file"
+        ))),
+    }
+}
+
+/// The scene of an imported glTF file, its warnings first.
+fn scene_from_gltf(
+    imported: scene::gltf::Imported,
+    spec: &str,
+    overrides: &[String],
+) -> Result<Scene> {
+    let files = Box::new(InMemory(imported.files));
+    let mut scene = scene_from_parsed(imported.table, spec, Some(files), overrides)?;
+    let mut warnings = imported.warnings;
+    warnings.append(&mut scene.warnings);
+    scene.warnings = warnings;
+    Ok(scene)
 }
 
 /// A scene from the text of a scene file, with `key=value` overrides applied in

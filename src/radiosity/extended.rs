@@ -34,7 +34,8 @@ use crate::scene::Scene;
 use crate::settings::Mechanisms;
 use glam::DVec3;
 use rayon::prelude::*;
-use std::time::Instant;
+// std's Instant natively; in a browser (where std's panics) the page's clock.
+use web_time::Instant;
 
 /// One element's terms towards every patch (own patch left at zero in F and T).
 #[derive(Clone, Debug, Default)]

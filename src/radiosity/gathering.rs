@@ -17,7 +17,9 @@ use super::form_factors::{Estimator, patch_factors};
 use super::mesh::Mesh;
 use crate::error::{Error, Result};
 use glam::DVec3;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+// std's Instant natively; in a browser (where std's panics) the page's clock.
+use web_time::Instant;
 
 /// The gathering solution and its parts, kept for checks.
 pub struct Gathered {

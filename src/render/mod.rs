@@ -22,6 +22,7 @@ mod renderer;
 pub use buffers::BufferInfo;
 pub use frame::{Frame, band_rows};
 pub use integrator::Integrator;
+pub(crate) use integrator::{exact_direct, lit_directly};
 pub use plan::EnvironmentMaps;
 pub use renderer::{Prepasses, Renderer, capture_cube};
 

@@ -218,6 +218,22 @@ impl Renderer {
         Ok(())
     }
 
+    /// Samples per pixel along each axis (`render.supersample`): a frame setting,
+    /// nothing view-independent changes (the viewer previews at one sample a
+    /// pixel while the view moves). The irradiance cache, swept per view and
+    /// sampling, is swept again.
+    pub fn set_supersample(&mut self, samples: u32) {
+        if self.scene.render.supersample != samples {
+            self.scene.render.supersample = samples.max(1);
+            *self.view_gather.lock().expect("no poisoned lock") = None;
+        }
+    }
+
+    /// Whether a radiosity solution is kept (solved, or handed over).
+    pub fn has_radiosity_solution(&self) -> bool {
+        self.radiosity.lock().expect("no poisoned lock").is_some()
+    }
+
     /// New shadow settings: every light's shadows are redone.
     pub fn set_shadows(&mut self, settings: ShadowSettings) {
         self.scene.shadows = settings;

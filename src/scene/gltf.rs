@@ -28,6 +28,7 @@
 //! orthographic cameras, points and lines, other scenes, unknown extensions.
 //! Single-sided materials are shaded on both sides, as every lumiere surface is.
 
+use super::resources::{Directory, Resources};
 use crate::error::{Error, FileOp, Result};
 use crate::image_io::read_file;
 use base64::Engine as _;
@@ -72,18 +73,19 @@ pub struct Imported {
 pub fn read(path: &Path) -> Result<Imported> {
     let bytes = read_file(path, FileOp::ReadScene)?;
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    from_bytes(&bytes, path, &base)
+    from_bytes(&bytes, path, &Directory(base))
 }
 
-/// The scene of glTF or GLB `bytes` named `path`, external files read from `base`.
-pub fn from_bytes(bytes: &[u8], path: &Path, base: &Path) -> Result<Imported> {
+/// The scene of glTF or GLB `bytes` named `path`, external files (buffers, images)
+/// read from `files` by their paths relative to it.
+pub fn from_bytes(bytes: &[u8], path: &Path, files: &dyn Resources) -> Result<Imported> {
     let model = |message: String| Error::Model {
         path: path.to_path_buf(),
         message,
     };
     let gltf = gltf::Gltf::from_slice(bytes)
         .map_err(|e| model(format!("not a readable glTF 2.0 file: {e}")))?;
-    let buffers = buffers(&gltf, base).map_err(model)?;
+    let buffers = buffers(&gltf, files).map_err(model)?;
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -91,7 +93,7 @@ pub fn from_bytes(bytes: &[u8], path: &Path, base: &Path) -> Result<Imported> {
     let mut import = Import {
         doc: &gltf.document,
         buffers: &buffers,
-        base,
+        external: files,
         name,
         table: Table::new(),
         files: HashMap::new(),
@@ -139,7 +141,7 @@ pub fn from_bytes(bytes: &[u8], path: &Path, base: &Path) -> Result<Imported> {
 
 /// Each buffer's bytes: the GLB's binary chunk, a data URI, or a file beside the
 /// glTF; each at least as long as it says, and each view within its buffer.
-fn buffers(gltf: &gltf::Gltf, base: &Path) -> std::result::Result<Vec<Vec<u8>>, String> {
+fn buffers(gltf: &gltf::Gltf, files: &dyn Resources) -> std::result::Result<Vec<Vec<u8>>, String> {
     let mut out = Vec::new();
     for buffer in gltf.buffers() {
         let index = buffer.index();
@@ -149,7 +151,7 @@ fn buffers(gltf: &gltf::Gltf, base: &Path) -> std::result::Result<Vec<Vec<u8>>, 
                 .clone()
                 .ok_or_else(|| format!("buffer {index}: the GLB has no binary chunk"))?,
             gltf::buffer::Source::Uri(uri) => {
-                uri_bytes(uri, base).map_err(|e| format!("buffer {index}: {e}"))?
+                uri_bytes(uri, files).map_err(|e| format!("buffer {index}: {e}"))?
             }
         };
         if data.len() < buffer.length() {
@@ -175,8 +177,8 @@ fn buffers(gltf: &gltf::Gltf, base: &Path) -> std::result::Result<Vec<Vec<u8>>, 
     Ok(out)
 }
 
-/// The bytes a URI names: a base64 data URI, or a file relative to `base`.
-fn uri_bytes(uri: &str, base: &Path) -> std::result::Result<Vec<u8>, String> {
+/// The bytes a URI names: a base64 data URI, or a file relative to the glTF.
+fn uri_bytes(uri: &str, files: &dyn Resources) -> std::result::Result<Vec<u8>, String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (_, data) = rest
             .split_once(";base64,")
@@ -190,11 +192,13 @@ fn uri_bytes(uri: &str, base: &Path) -> std::result::Result<Vec<u8>, String> {
             "{uri}: only files beside the glTF and data URIs are read"
         ));
     }
-    let file: PathBuf = base.join(percent_decoded(uri));
-    read_file(&file, FileOp::Read).map_err(|e| match std::error::Error::source(&e) {
-        Some(cause) => format!("{e}: {cause}"),
-        None => e.to_string(),
-    })
+    let file = PathBuf::from(percent_decoded(uri));
+    files
+        .read(&file)
+        .map_err(|e| match std::error::Error::source(&e) {
+            Some(cause) => format!("{e}: {cause}"),
+            None => e.to_string(),
+        })
 }
 
 /// A relative URI's path with its `%XX` escapes decoded (`my%20model.bin`).
@@ -225,7 +229,7 @@ fn percent_decoded(uri: &str) -> String {
 struct Import<'a> {
     doc: &'a gltf::Document,
     buffers: &'a [Vec<u8>],
-    base: &'a Path,
+    external: &'a dyn Resources,
     /// The glTF file's name, for the in-memory files' paths.
     name: String,
     table: Table,
@@ -648,7 +652,7 @@ impl Import<'_> {
                 let data = &self.buffers[view.buffer().index()];
                 data[view.offset()..view.offset() + view.length()].to_vec()
             }
-            gltf::image::Source::Uri { uri, .. } => uri_bytes(uri, self.base)
+            gltf::image::Source::Uri { uri, .. } => uri_bytes(uri, self.external)
                 .map_err(|e| format!("{said}: image {}: {e}", image.index()))?,
         };
         let file = format!("{}#image {}", self.name, image.index());
@@ -720,7 +724,7 @@ fn image_size(aspect: f64) -> (i64, i64) {
 
 /// A camera looking down -z at the box `low`..`high` from far enough to see it
 /// whole under a 45° field of view.
-fn framing(low: DVec3, high: DVec3) -> Table {
+pub(super) fn framing(low: DVec3, high: DVec3) -> Table {
     let (centre, radius) = if low.x <= high.x {
         ((low + high) / 2.0, ((high - low).length() / 2.0).max(1e-3))
     } else {

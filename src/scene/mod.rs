@@ -15,6 +15,7 @@ pub mod lights;
 mod materials;
 mod medium_settings;
 mod obj;
+pub mod obj_scene;
 mod radiosity_settings;
 pub mod ray_queries;
 pub mod resources;

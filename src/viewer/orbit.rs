@@ -2,8 +2,8 @@
 //! pitch about its up axis, and a distance), so that the mouse turns the view
 //! about what the scene looks at.
 
+use crate::scene::Camera;
 use glam::DVec3;
-use lumiere::Camera;
 
 #[derive(Clone, Debug)]
 pub struct Orbit {
@@ -28,15 +28,24 @@ impl Orbit {
         }
     }
 
-    /// Turns by `yaw` and `pitch` radians.
-    pub fn turn(&mut self, yaw: f64, pitch: f64) {
-        self.yaw += yaw;
-        self.pitch = (self.pitch + pitch).clamp(-MAX_PITCH, MAX_PITCH);
+    /// Its yaw, pitch and distance.
+    pub fn state(&self) -> [f64; 3] {
+        [self.yaw, self.pitch, self.distance]
     }
 
-    /// Moves towards the target (`factor` < 1) or away from it.
-    pub fn zoom(&mut self, factor: f64) {
-        self.distance = (self.distance * factor).max(1e-6);
+    /// Turns to `yaw` and `pitch` (radians, the scene camera's yaw being 0) at
+    /// `distance` from the target; pitch is kept short of the poles, the distance
+    /// positive.
+    pub fn set(&mut self, yaw: f64, pitch: f64, distance: f64) {
+        if yaw.is_finite() {
+            self.yaw = yaw;
+        }
+        if pitch.is_finite() {
+            self.pitch = pitch.clamp(-MAX_PITCH, MAX_PITCH);
+        }
+        if distance.is_finite() {
+            self.distance = distance.max(1e-6);
+        }
     }
 
     /// The camera now, at `width` × `height`.
@@ -106,13 +115,14 @@ mod tests {
         let scene = camera(DVec3::new(4.0, 5.0, 9.0));
         let mut orbit = Orbit::new(scene.clone());
         let distance = (scene.eye - scene.look_at).length();
-        orbit.turn(1.0, 0.3);
+        let [yaw, pitch, _] = orbit.state();
+        orbit.set(yaw + 1.0, pitch + 0.3, distance);
         let turned = orbit.camera(64, 48);
         assert!(((turned.eye - scene.look_at).length() - distance).abs() < 1e-9);
         assert!((turned.eye - scene.eye).length() > 0.1);
-        orbit.turn(2.0 * std::f64::consts::PI - 1.0, -0.3);
+        orbit.set(yaw + 2.0 * std::f64::consts::PI, pitch, distance);
         assert!((orbit.camera(64, 48).eye - scene.eye).length() < 1e-9);
-        orbit.zoom(0.5);
+        orbit.set(yaw, pitch, distance / 2.0);
         let near = orbit.camera(64, 48);
         assert!(((near.eye - scene.look_at).length() - distance / 2.0).abs() < 1e-9);
     }
