@@ -521,3 +521,37 @@ mod tests {
         assert_eq!(text.matches(cause).count(), 1, "{text}");
     }
 }
+
+/// `text` on one line, any word of it longer than a line (a megabyte name, a
+/// mistyped key of thousands of characters) cut to its ends and its length.
+pub fn one_line(text: &str) -> String {
+    const LONGEST: usize = 120;
+    text.split('\n')
+        .flat_map(|line| line.split(' '))
+        .map(|word| {
+            let chars = word.chars().count();
+            if chars <= LONGEST {
+                return word.to_string();
+            }
+            let head: String = word.chars().take(60).collect();
+            let tail: String = word.chars().skip(chars - 20).collect();
+            format!("{head}…[{} characters]…{tail}", chars - 80)
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+impl Error {
+    /// The error and its causes, joined by ": " on one line: what the command
+    /// line prints after `error: `.
+    pub fn line(&self) -> String {
+        let mut text = self.to_string();
+        let mut cause = std::error::Error::source(self);
+        while let Some(c) = cause {
+            text.push_str(": ");
+            text.push_str(&c.to_string());
+            cause = c.source();
+        }
+        one_line(&text)
+    }
+}

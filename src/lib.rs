@@ -48,7 +48,7 @@ use internals::{
 /// The vector types of the scene's fields (`DVec3` positions, `Vec3` colours).
 pub use glam;
 
-pub use error::{Error, FileOp, OverBudget, Result, Unsupported};
+pub use error::{Error, FileOp, OverBudget, Result, Unsupported, one_line};
 pub use image_io::{
     Buffer, BufferData, Candidate, Comparison, Flip, FlipRange, Format as ImageFormat, FuzzyMatch,
     Image, Moments, MomentsSum, NO_ID, StatisticalTest, ToleranceCheck, apply_mask,

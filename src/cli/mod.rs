@@ -108,24 +108,7 @@ pub fn is_broken_pipe(error: &anyhow::Error) -> bool {
     })
 }
 
-/// `text` on one line, any word of it longer than a line (a megabyte name, a
-/// mistyped key of thousands of characters) cut to its ends and its length.
-pub fn one_line(text: &str) -> String {
-    const LONGEST: usize = 120;
-    text.split('\n')
-        .flat_map(|line| line.split(' '))
-        .map(|word| {
-            let chars = word.chars().count();
-            if chars <= LONGEST {
-                return word.to_string();
-            }
-            let head: String = word.chars().take(60).collect();
-            let tail: String = word.chars().skip(chars - 20).collect();
-            format!("{head}…[{} characters]…{tail}", chars - 80)
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
-}
+pub use lumiere::one_line;
 
 /// A command-line usage error as one line: clap's message with the lines that
 /// continue it (the missing arguments, the possible values) and a tip naming a

@@ -84,7 +84,7 @@ impl Session {
         };
         match view.advance(TICK) {
             Ok(()) => self.frame(id),
-            Err(e) => vec![error(id, &e.to_string())],
+            Err(e) => vec![error(id, &e.line())],
         }
     }
 
@@ -151,7 +151,7 @@ impl Session {
         source: Source,
         sets: Vec<String>,
     ) -> Result<Vec<Reply>, (u64, String)> {
-        let view = View::open(source, sets).map_err(|e| (id, e.to_string()))?;
+        let view = View::open(source, sets).map_err(|e| (id, e.line()))?;
         self.view = Some(view);
         self.last_id = Some(id);
         let mut replies = vec![self.scene_reply(id)];
@@ -202,7 +202,7 @@ impl Session {
         };
         let shown = match view.frame() {
             Ok(shown) => shown,
-            Err(e) => return vec![error(id, &e.to_string())],
+            Err(e) => return vec![error(id, &e.line())],
         };
         let buffers = view.buffers().unwrap_or_default();
         let header = json!({
@@ -231,7 +231,7 @@ impl Session {
 
     fn set(&mut self, change: Change) -> Result<Vec<Reply>, (u64, String)> {
         let id = change.id;
-        let failed = |e: Error| (id, e.to_string());
+        let failed = |e: Error| (id, e.line());
         let view = self.view(id)?;
         if let Some(choices) = &change.choices {
             let mut chosen = view.choices.clone();
@@ -313,7 +313,7 @@ impl Session {
                 SolveAction::Resume => s.paused = false,
                 SolveAction::Step => s.ask_step(),
             })
-            .map_err(|e| (id, e.to_string()))?;
+            .map_err(|e| (id, e.line()))?;
         if !steered {
             return Err((
                 id,
@@ -331,8 +331,7 @@ impl Session {
 
     fn export(&mut self, id: u64, what: &str) -> Result<Vec<Reply>, (u64, String)> {
         let view = self.view(id)?;
-        let (width, height, channels, values) =
-            view.export(what).map_err(|e| (id, e.to_string()))?;
+        let (width, height, channels, values) = view.export(what).map_err(|e| (id, e.line()))?;
         let header = json!({"type": "export", "id": id, "what": what, "width": width, "height": height, "channels": channels});
         let payload: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
         Ok(vec![protocol::binary(&header, &payload)])
@@ -355,7 +354,7 @@ fn option_index(family: &families::Family, option: &str) -> Result<usize, String
 }
 
 fn catalogue_reply(id: u64) -> Result<Vec<Reply>, (u64, String)> {
-    let entries = catalogue::entries().map_err(|e| (id, e.to_string()))?;
+    let entries = catalogue::entries().map_err(|e| (id, e.line()))?;
     let entries: Vec<Value> = entries
         .iter()
         .map(|e| {
