@@ -2,4 +2,9 @@
 //! native server of `lumiere view` over a real WebSocket, and the page itself in
 //! headless Chromium, served natively and as the static WebAssembly site.
 
+#[allow(dead_code)]
+#[path = "../gallery/browser.rs"]
+mod browser;
+mod page;
+mod server;
 mod session;

@@ -3,7 +3,7 @@
 //! follow the method, the light and the split, and a bad message must get one
 //! error and leave the session working.
 
-use lumiere::viewer::{Reply, Session};
+use lumiere::viewer::Session;
 use lumiere::{Renderer, load_scene};
 use serde_json::{Value, json};
 

@@ -155,7 +155,14 @@ fn respond(stream: &mut TcpStream, status: u16, media: &str, body: &[u8]) -> Res
         body.len()
     )?;
     stream.write_all(body)?;
-    Ok(stream.flush()?)
+    stream.flush()?;
+    // What the client still sends (the rest of a refused head) is read and
+    // dropped, so that closing does not reset the connection before it reads
+    // the answer.
+    stream.shutdown(std::net::Shutdown::Write)?;
+    stream.set_read_timeout(Some(Duration::from_millis(200)))?;
+    let _ = std::io::copy(&mut (&mut *stream).take(1 << 20), &mut std::io::sink());
+    Ok(())
 }
 
 /// The page's messages, answered until it closes; a radiosity solve goes on
