@@ -8,3 +8,4 @@ mod browser;
 mod page;
 mod server;
 mod session;
+mod web;
