@@ -400,6 +400,40 @@ fn gib(bytes: u64) -> f64 {
     bytes as f64 / (1u64 << 30) as f64
 }
 
+/// `text` on one line, any word of it longer than a line (a megabyte name, a
+/// mistyped key of thousands of characters) cut to its ends and its length.
+pub fn one_line(text: &str) -> String {
+    const LONGEST: usize = 120;
+    text.split('\n')
+        .flat_map(|line| line.split(' '))
+        .map(|word| {
+            let chars = word.chars().count();
+            if chars <= LONGEST {
+                return word.to_string();
+            }
+            let head: String = word.chars().take(60).collect();
+            let tail: String = word.chars().skip(chars - 20).collect();
+            format!("{head}…[{} characters]…{tail}", chars - 80)
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+impl Error {
+    /// The error and its causes, joined by ": " on one line: what the command
+    /// line prints after `error: `.
+    pub fn line(&self) -> String {
+        let mut text = self.to_string();
+        let mut cause = std::error::Error::source(self);
+        while let Some(c) = cause {
+            text.push_str(": ");
+            text.push_str(&c.to_string());
+            cause = c.source();
+        }
+        one_line(&text)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -519,39 +553,5 @@ mod tests {
         let text = line(&e);
         let cause = text.rsplit(": ").next().unwrap();
         assert_eq!(text.matches(cause).count(), 1, "{text}");
-    }
-}
-
-/// `text` on one line, any word of it longer than a line (a megabyte name, a
-/// mistyped key of thousands of characters) cut to its ends and its length.
-pub fn one_line(text: &str) -> String {
-    const LONGEST: usize = 120;
-    text.split('\n')
-        .flat_map(|line| line.split(' '))
-        .map(|word| {
-            let chars = word.chars().count();
-            if chars <= LONGEST {
-                return word.to_string();
-            }
-            let head: String = word.chars().take(60).collect();
-            let tail: String = word.chars().skip(chars - 20).collect();
-            format!("{head}…[{} characters]…{tail}", chars - 80)
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
-}
-
-impl Error {
-    /// The error and its causes, joined by ": " on one line: what the command
-    /// line prints after `error: `.
-    pub fn line(&self) -> String {
-        let mut text = self.to_string();
-        let mut cause = std::error::Error::source(self);
-        while let Some(c) = cause {
-            text.push_str(": ");
-            text.push_str(&c.to_string());
-            cause = c.source();
-        }
-        one_line(&text)
     }
 }

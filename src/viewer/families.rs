@@ -1,6 +1,6 @@
 //! The method families a scene lets the viewer switch between: the global method
 //! (Whitted, the two-pass methods), the radiosity solver (gathering, shooting),
-//! the shadow method, the texture filter and the environment maps' layout. Each
+//! a medium's single scattering (light volumes, ray marching), the shadow method, the texture filter and the environment maps' layout. Each
 //! option is a list of `key=value` overrides, checked on the scene before it is
 //! offered: an option the renderer would refuse is not in the list.
 
@@ -8,7 +8,7 @@ use crate::catalogue;
 use crate::error::Result;
 use crate::render::{Renderer, exact_direct, lit_directly};
 use crate::scene::{EnvironmentSource, Scene};
-use crate::settings::{Filter, GlobalMethod, ShadowMethod, Solver};
+use crate::settings::{Filter, GlobalMethod, MediumMethod, ShadowMethod, Solver};
 use crate::shadow;
 use crate::texture::environment::Layout;
 
@@ -42,6 +42,7 @@ pub fn families(scene: &Scene, load: &Load) -> (Vec<Family>, Vec<usize>) {
     let mut found: Vec<(Family, usize)> = Vec::new();
     found.extend(global(scene, load));
     found.extend(solver(scene));
+    found.extend(medium(scene, load));
     found.extend(shadows(scene));
     found.extend(filter(scene));
     found.extend(environment(scene, load));
@@ -128,6 +129,47 @@ fn solver(scene: &Scene) -> Option<(Family, usize)> {
         Family {
             name: "solver",
             label: "Radiosity solver",
+            options,
+        },
+        chosen,
+    ))
+}
+
+/// Max's light volumes and the ray-marched reference, in a scene with a medium.
+fn medium(scene: &Scene, load: &Load) -> Option<(Family, usize)> {
+    let current = scene.medium.as_ref()?.method;
+    let methods = [
+        (
+            MediumMethod::LightVolumes,
+            "light-volumes",
+            paper("light-volumes-cornell"),
+        ),
+        (
+            MediumMethod::RayMarching,
+            "ray-marching",
+            "the reference".into(),
+        ),
+    ];
+    let mut options = Vec::new();
+    let mut chosen = 0;
+    for (method, name, paper) in methods {
+        let sets = vec![set("medium.method", name)];
+        if method != current && !load(&sets).is_ok_and(|s| Renderer::new(s).check().is_ok()) {
+            continue;
+        }
+        if method == current {
+            chosen = options.len();
+        }
+        options.push(Choice {
+            name: name.into(),
+            paper,
+            sets,
+        });
+    }
+    Some((
+        Family {
+            name: "medium",
+            label: "Single scattering",
             options,
         },
         chosen,

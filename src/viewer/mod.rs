@@ -236,7 +236,7 @@ impl Session {
         if let Some(choices) = &change.choices {
             let mut chosen = view.choices.clone();
             for (family, option) in choices {
-                let Some(f) = view.families.iter().position(|f| &f.name == family) else {
+                let Some(f) = view.families.iter().position(|f| f.name == family) else {
                     let names: Vec<&str> = view.families.iter().map(|f| f.name).collect();
                     return Err((
                         id,

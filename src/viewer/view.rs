@@ -269,12 +269,12 @@ impl View {
             Quality::Full => self.scene.render.supersample,
         };
         let kept = self.kept(choices)?;
-        if let Some(s) = kept.shooting.as_mut() {
-            if !kept.renderer.has_radiosity_solution() {
-                // The first state: the emitters' first shots.
-                let first = s.advance(Duration::ZERO);
-                kept.renderer.set_radiosity_solution(Arc::new(first));
-            }
+        if let Some(s) = kept.shooting.as_mut()
+            && !kept.renderer.has_radiosity_solution()
+        {
+            // The first state: the emitters' first shots.
+            let first = s.advance(Duration::ZERO);
+            kept.renderer.set_radiosity_solution(Arc::new(first));
         }
         kept.renderer.set_camera(camera);
         kept.renderer.set_supersample(supersample);

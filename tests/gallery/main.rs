@@ -6,7 +6,7 @@
 mod browser;
 mod report;
 
-use browser::Browser;
+use browser::{Browser, StaticServer, static_viewer};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
@@ -19,10 +19,15 @@ struct Run {
     stderr: String,
 }
 
+/// `lumiere gallery ARGS` in `dir`; without the live viewer unless ARGS name one.
 fn gallery(args: &[&str], dir: &Path) -> Run {
+    let mut args = args.to_vec();
+    if !args.contains(&"--viewer") {
+        args.push("--no-viewer");
+    }
     let out = Command::new(env!("CARGO_BIN_EXE_lumiere"))
         .arg("gallery")
-        .args(args)
+        .args(&args)
         .current_dir(dir)
         .output()
         .expect("the binary runs");
@@ -37,8 +42,9 @@ fn small_gallery() -> &'static Path {
     static SITE: OnceLock<tempfile::TempDir> = OnceLock::new();
     SITE.get_or_init(|| {
         let dir = tempfile::tempdir().unwrap();
+        let viewer = static_viewer().to_string_lossy().into_owned();
         let mut args = IDS.to_vec();
-        args.extend(["--test-size", "-o", "site"]);
+        args.extend(["--test-size", "-o", "site", "--viewer", &viewer]);
         let run = gallery(&args, dir.path());
         assert_eq!(run.code, 0, "{}", run.stderr);
         dir
@@ -96,11 +102,38 @@ fn every_page_loads_whole_in_a_real_browser() {
 /// Screenshots go to `shots`.
 pub fn check_pages(site: &Path, pages: &[PathBuf], shots: &Path) {
     std::fs::create_dir_all(shots).unwrap();
+    // Served as a static host serves it (a module worker does not start from
+    // file://).
+    let server = StaticServer::start(site);
+    let url = |page: &Path| server.url(&page.strip_prefix(site).unwrap().to_string_lossy());
     let mut browser = Browser::start();
     for page in pages {
         let name = page.file_stem().unwrap().to_string_lossy().into_owned();
-        let url = format!("file://{}", page.canonicalize().unwrap().display());
-        browser.open(&url);
+        browser.open(&url(page));
+        // A topic's live viewer draws its first frame, pixels on its canvas.
+        let live = browser.evaluate(
+            "(async () => {
+                const frame = document.querySelector('iframe.live');
+                if (!frame) return null;
+                const deadline = Date.now() + 60000;
+                while (!(frame.contentWindow.lumiere && frame.contentWindow.lumiere.frameCount > 0)) {
+                    if (Date.now() > deadline) return 'no frame in 60 s';
+                    await new Promise(r => setTimeout(r, 50));
+                }
+                const c = frame.contentDocument.getElementById('canvas');
+                const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+                let lit = 0;
+                for (let i = 0; i < d.length; i += 4) lit += (d[i] + d[i + 1] + d[i + 2]) > 30;
+                return { lit: lit / (d.length / 4), errors: frame.contentWindow.lumiere.errors };
+            })()",
+        );
+        if name != "index" && site.join("viewer").is_dir() {
+            assert!(
+                live["lit"].as_f64().is_some_and(|l| l > 0.2),
+                "{name}: the live viewer: {live}"
+            );
+            assert_eq!(live["errors"], serde_json::json!([]), "{name}");
+        }
         let shot = browser.screenshot();
         let decoded = image_size(&shot);
         assert_eq!(decoded.0, 1280, "{name}: screenshot {decoded:?}");
@@ -132,6 +165,7 @@ pub fn check_pages(site: &Path, pages: &[PathBuf], shots: &Path) {
             let link = link.as_str().unwrap();
             assert!(!link.contains("://"), "{name}: {link} leaves the site");
             let (file, anchor) = link.split_once('#').unwrap_or((link, ""));
+            let file = file.split('?').next().unwrap();
             let target = if file.is_empty() {
                 page.clone()
             } else {
@@ -163,10 +197,7 @@ pub fn check_pages(site: &Path, pages: &[PathBuf], shots: &Path) {
     browser.set_viewport(390, 844, true);
     for page in pages {
         let name = page.file_stem().unwrap().to_string_lossy().into_owned();
-        browser.open(&format!(
-            "file://{}",
-            page.canonicalize().unwrap().display()
-        ));
+        browser.open(&url(page));
         let overflow = browser.evaluate(
             "(() => { document.querySelectorAll('details').forEach(d => d.open = true);
                       return document.documentElement.scrollWidth - window.innerWidth; })()",

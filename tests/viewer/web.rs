@@ -5,72 +5,11 @@
 //! buffers identical to the native library's and images within 1e-5 of the
 //! brightest pixel; every catalogue entry renders in the page.
 
-use super::browser::Browser;
+use super::browser::{Browser, StaticServer, static_viewer};
 use super::page::check_page;
 use super::server::Server;
 use lumiere::{BufferData, Renderer, load_scene};
 use serde_json::{Value, json};
-use std::io::{BufRead, BufReader};
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
-use std::sync::OnceLock;
-
-/// The static viewer, built once a test binary.
-fn site() -> &'static Path {
-    static SITE: OnceLock<PathBuf> = OnceLock::new();
-    SITE.get_or_init(|| {
-        let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/build-web.sh");
-        let out = Command::new(&script)
-            .stderr(Stdio::inherit())
-            .output()
-            .expect("the build script runs");
-        assert!(out.status.success(), "{} failed", script.display());
-        let folder = String::from_utf8(out.stdout).unwrap();
-        PathBuf::from(folder.trim().lines().last().unwrap())
-    })
-}
-
-/// A static file server (Python's, as a teacher's machine has it) on a free
-/// loopback port, stopped when dropped.
-struct StaticServer {
-    child: Child,
-    port: u16,
-}
-
-impl Drop for StaticServer {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
-impl StaticServer {
-    fn start(folder: &Path) -> StaticServer {
-        let mut child = Command::new("python3")
-            .args(["-u", "-m", "http.server", "--bind", "127.0.0.1", "0"])
-            .current_dir(folder)
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("python3 serves the folder");
-        let mut line = String::new();
-        BufReader::new(child.stdout.take().unwrap())
-            .read_line(&mut line)
-            .unwrap();
-        // "Serving HTTP on 127.0.0.1 port 40123 (http://127.0.0.1:40123/) ..."
-        let port = line
-            .split(" port ")
-            .nth(1)
-            .and_then(|rest| rest.split(' ').next())
-            .and_then(|p| p.parse().ok())
-            .unwrap_or_else(|| panic!("no port in {line:?}"));
-        StaticServer { child, port }
-    }
-
-    fn url(&self, query: &str) -> String {
-        format!("http://127.0.0.1:{}/index.html?{query}", self.port)
-    }
-}
 
 #[test]
 #[cfg_attr(
@@ -78,12 +17,12 @@ impl StaticServer {
     ignore = "needs Chromium and the WebAssembly toolchain (LUMIERE_SKIP_SYSTEM_TESTS)"
 )]
 fn the_static_page_shows_and_follows_the_webassembly_engine() {
-    let server = StaticServer::start(site());
+    let server = StaticServer::start(static_viewer());
     let mut browser = Browser::start();
     let sets = "camera.width%3D96,camera.height%3D96,shadows.method%3D%22scanline%22";
     check_page(
         &mut browser,
-        &server.url(&format!("scene=cornell-box-point&sets={sets}")),
+        &server.url(&format!("index.html?scene=cornell-box-point&sets={sets}")),
     );
     assert_eq!(browser.evaluate("lumiere.state().engine"), json!("worker"));
 }
@@ -109,10 +48,12 @@ fn exported(browser: &mut Browser, what: &str) -> Vec<f32> {
     ignore = "needs Chromium and the WebAssembly toolchain (LUMIERE_SKIP_SYSTEM_TESTS)"
 )]
 fn exact_hard_shadows_in_webassembly_equal_the_native_library() {
-    let server = StaticServer::start(site());
+    let server = StaticServer::start(static_viewer());
     let mut browser = Browser::start();
     let size = ["camera.width=64", "camera.height=64"];
-    browser.open(&server.url("scene=cornell-box-point&sets=camera.width%3D64,camera.height%3D64"));
+    browser.open(
+        &server.url("index.html?scene=cornell-box-point&sets=camera.width%3D64,camera.height%3D64"),
+    );
     assert_eq!(
         browser.evaluate("lumiere.ready.then(() => true)"),
         json!(true)
@@ -182,9 +123,11 @@ fn every_entry_renders(browser: &mut Browser) {
     ignore = "needs Chromium and the WebAssembly toolchain (LUMIERE_SKIP_SYSTEM_TESTS)"
 )]
 fn every_catalogue_entry_renders_in_the_static_page() {
-    let server = StaticServer::start(site());
+    let server = StaticServer::start(static_viewer());
     let mut browser = Browser::start();
-    browser.open(&server.url("scene=cornell-box-point&sets=camera.width%3D24,camera.height%3D24"));
+    browser.open(
+        &server.url("index.html?scene=cornell-box-point&sets=camera.width%3D24,camera.height%3D24"),
+    );
     assert_eq!(
         browser.evaluate("lumiere.ready.then(() => true)"),
         json!(true)

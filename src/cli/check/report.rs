@@ -38,7 +38,7 @@ pub fn write(
         html,
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
-         <title>lumiere check: {passed} of {} passed</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
+         <link rel=\"icon\" href=\"data:,\">\n<title>lumiere check: {passed} of {} passed</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
          <h1>{passed} of {} passed</h1>\n<p>Worst first. Each strip shows the reference, the difference \
          magnified {GAIN}&times; and the candidate.</p>",
         verdicts.len(),

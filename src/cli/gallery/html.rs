@@ -18,6 +18,7 @@ h2 { margin-top: 40px; border-bottom: 2px solid var(--line); }
 h3 { margin: 8px 0 4px; font-size: 1.1em; }
 p, li { max-width: 75ch; overflow-wrap: anywhere; }
 img { max-width: 100%; height: auto; image-rendering: pixelated; background: #000; display: block; }
+.live { width: 100%; height: min(90vh, 720px); border: 1px solid #ccc; border-radius: 6px; }
 .grid { display: grid; gap: 20px; grid-template-columns: repeat(auto-fill, minmax(min(100%, 300px), 1fr)); }
 .card, .entry, .topic { background: #fff; border: 1px solid var(--line); border-radius: 6px; padding: 12px; margin: 0; }
 .card img.main, .entry img.main, .topic img { width: 100%; }
@@ -70,6 +71,7 @@ pub fn page(title: &str, topics: &[Topic], current: Option<Topic>, body: &str) -
 <meta charset="utf-8">
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <title>{title}</title>
+<link rel="icon" href="data:,">
 <link rel="stylesheet" href="style.css">
 </head>
 <body>
@@ -138,6 +140,43 @@ fn extras(out: &mut String, card: &Card, label: &str) {
             escape(label)
         );
     }
+}
+
+/// The topic's live viewer: the static site's WebAssembly viewer in a frame,
+/// opened on the topic's scene and methods.
+pub fn live_viewer(live: &super::topics::Live, width: u32, height: u32, topic: &str) -> String {
+    let mut sets = vec![
+        format!("camera.width={width}"),
+        format!("camera.height={height}"),
+    ];
+    sets.extend(live.sets.iter().map(|s| s.to_string()));
+    let sets: Vec<String> = sets.iter().map(|s| percent_encoded(s)).collect();
+    let mut query = format!(
+        "embed=1&scene={}&sets={}",
+        percent_encoded(live.scene),
+        sets.join(",")
+    );
+    if !live.methods.is_empty() {
+        query += &format!("&methods={}", live.methods.join(","));
+    }
+    format!(
+        r#"<h2>Try it</h2><p>The methods live, computed in your browser (the library compiled to WebAssembly): drag to turn the view, switch the method, move the light, split the view between two methods. <a href="viewer/index.html?{query_full}">Open the viewer on its own page</a>.</p><iframe class="live" src="viewer/index.html?{query}" title="the live viewer: {topic}"></iframe>"#,
+        query = escape(&query),
+        query_full = escape(&query.replacen("embed=1&", "", 1)),
+        topic = escape(topic),
+    )
+}
+
+/// `text` as a URL's query value.
+fn percent_encoded(text: &str) -> String {
+    text.bytes()
+        .map(|b| match b {
+            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'-' | b'_' | b'.' | b'~' => {
+                (b as char).to_string()
+            }
+            _ => format!("%{b:02X}"),
+        })
+        .collect()
 }
 
 /// One image of the side-by-side comparison.

@@ -43,6 +43,94 @@ pub struct Args {
     /// Render every picture at its entry's golden-image test size instead.
     #[arg(long, conflicts_with = "width")]
     test_size: bool,
+    /// The static viewer (page and WebAssembly) that `tools/build-web.sh` builds,
+    /// put on every topic page.
+    #[arg(long, value_name = "DIR", default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/target/web/viewer"))]
+    viewer: PathBuf,
+    /// Leave the live viewer out (pictures and plots only).
+    #[arg(long, conflicts_with = "viewer")]
+    no_viewer: bool,
+    /// The course's notebooks executed and exported as HTML pages
+    /// (`tools/build-notebooks.sh` makes them), linked from their topics; left out
+    /// with a note when the default folder has none.
+    #[arg(long, value_name = "DIR")]
+    notebooks: Option<PathBuf>,
+}
+
+/// Where `tools/build-notebooks.sh` puts the executed notebooks.
+const NOTEBOOKS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/target/web/notebooks");
+
+/// The static viewer's folder, refused in one line when it was not built.
+fn live_viewer(folder: &Path) -> Result<PathBuf> {
+    if !folder.join("index.html").is_file() || !folder.join("pkg").is_dir() {
+        bail!(
+            "--viewer {}: no static viewer there (tools/build-web.sh builds it; --no-viewer leaves it out)",
+            folder.display()
+        );
+    }
+    Ok(folder.to_path_buf())
+}
+
+/// The executed notebooks' pages by topic (the topic's name in the file's name):
+/// from `given`, or from the default folder when it has any.
+fn notebook_pages(given: Option<&Path>) -> Result<Vec<(Topic, PathBuf)>> {
+    let folder = given.unwrap_or(Path::new(NOTEBOOKS));
+    let listing = match std::fs::read_dir(folder) {
+        Ok(listing) => listing,
+        Err(e) if given.is_some() => {
+            return Err(e).with_context(|| format!("--notebooks {}", folder.display()));
+        }
+        Err(_) => {
+            eprintln!(
+                "gallery: no executed notebooks in {} (tools/build-notebooks.sh makes them): the topics link none",
+                folder.display()
+            );
+            return Ok(Vec::new());
+        }
+    };
+    let mut pages = Vec::new();
+    for file in listing {
+        let path = file?.path();
+        let name = file_name(&path);
+        if !name.ends_with(".html") {
+            continue;
+        }
+        if let Some(topic) = Topic::ALL.into_iter().find(|t| name.contains(t.name())) {
+            pages.push((topic, path));
+        }
+    }
+    pages.sort();
+    if given.is_some() && pages.is_empty() {
+        bail!(
+            "--notebooks {}: no notebook page (NN-topic.html) there",
+            folder.display()
+        );
+    }
+    Ok(pages)
+}
+
+fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+/// Copies the folder `from` into `to`, whole.
+fn copy_folder(from: &Path, to: &Path) -> Result<()> {
+    std::fs::create_dir_all(to).with_context(|| format!("cannot write {}", to.display()))?;
+    for entry in
+        std::fs::read_dir(from).with_context(|| format!("cannot read {}", from.display()))?
+    {
+        let entry = entry?;
+        let target = to.join(entry.file_name());
+        if entry.file_type()?.is_dir() {
+            copy_folder(&entry.path(), &target)?;
+        } else {
+            std::fs::copy(entry.path(), &target)
+                .with_context(|| format!("cannot copy {}", entry.path().display()))?;
+        }
+    }
+    Ok(())
 }
 
 /// What the site's root records, to recognise an earlier gallery.
@@ -89,6 +177,20 @@ pub fn run(args: Args) -> Result<()> {
         })
     };
 
+    let viewer = (!args.no_viewer)
+        .then(|| live_viewer(&args.viewer))
+        .transpose()?;
+    let notebooks = notebook_pages(args.notebooks.as_deref())?;
+    if let Some(folder) = &viewer {
+        copy_folder(folder, &site.root.join("viewer"))?;
+    }
+    for (_, page) in &notebooks {
+        let name = format!("notebooks/{}", file_name(page));
+        std::fs::create_dir_all(site.root.join("notebooks"))?;
+        std::fs::copy(page, site.root.join(&name))
+            .with_context(|| format!("cannot copy {}", page.display()))?;
+    }
+
     let pages: Vec<&Page> = topics.iter().map(|&t| topics::page(t)).collect();
     let jobs: u64 = pages
         .iter()
@@ -107,6 +209,16 @@ pub fn run(args: Args) -> Result<()> {
             html::escape(page.topic.title()),
             html::escape(page.intro)
         );
+        if viewer.is_some() {
+            let (width, height) = size(page.live.scene)?;
+            body += &html::live_viewer(&page.live, width, height, page.topic.title());
+        }
+        if let Some((_, notebook)) = notebooks.iter().find(|(t, _)| *t == page.topic) {
+            body += &format!(
+                r#"<p class="notebook">The course's notebook for this topic, executed: <a href="notebooks/{0}">{0}</a>.</p>"#,
+                html::escape(&file_name(notebook))
+            );
+        }
         // One scene, every method: the first variant is the reference.
         body.push_str("<h2>One scene, every method</h2><div class=\"grid\">");
         let mut reference: Option<(String, &str)> = None;

@@ -23,8 +23,18 @@ pub enum Plot {
     RadiosityResidual,
 }
 
+/// The live viewer a topic page opens: a catalogue scene with some keys changed,
+/// and the methods of its first family to offer (all when empty).
+pub struct Live {
+    pub scene: &'static str,
+    pub sets: &'static [&'static str],
+    pub methods: &'static [&'static str],
+}
+
 pub struct Page {
     pub topic: Topic,
+    /// The scene and methods the page's live viewer opens on.
+    pub live: Live,
     /// What the page shows, in a paragraph.
     pub intro: &'static str,
     /// The side-by-side images; the first is the reference the others are measured
@@ -63,6 +73,11 @@ const fn variant(
 pub const PAGES: [Page; 8] = [
     Page {
         topic: Topic::VisibleSurfaces,
+        live: Live {
+            scene: "shading-modes",
+            sets: &[],
+            methods: &[],
+        },
         intro: "The scan-line pass finds, for every sample, the polygon in front (Watkins 1970): \
                 its id, depth and normal are the buffers below. Shading then evaluates the light \
                 once per polygon (flat), at the vertices (Gouraud) or at every sample with an \
@@ -92,6 +107,19 @@ pub const PAGES: [Page; 8] = [
     },
     Page {
         topic: Topic::HardShadows,
+        live: Live {
+            scene: "cornell-box-point",
+            sets: &["shadows.method=\"shadow-volumes\""],
+            methods: &[
+                "ray-cast",
+                "scanline",
+                "shadow-polygons",
+                "shadow-volumes",
+                "stencil-shadow-volumes",
+                "shadow-map",
+                "none",
+            ],
+        },
         intro: "The point-lit Cornell box through every hard-shadow method. The exact ones \
                 (scan-line shadows, shadow polygons, shadow volumes and their stencil form) agree \
                 with ray casting sample for sample, which the test suite proves; the shadow map \
@@ -144,6 +172,11 @@ pub const PAGES: [Page; 8] = [
     },
     Page {
         topic: Topic::SoftShadows,
+        live: Live {
+            scene: "cornell-box",
+            sets: &["shadows.method=\"umbra-penumbra\""],
+            methods: &["umbra-penumbra", "soft-shadow-volumes", "ray-cast", "none"],
+        },
         intro: "The Cornell box under its quad light. Nishita & Nakamae's umbra and penumbra \
                 polygons give the exact visible part of the light, the reference; Brotman & \
                 Badler's soft shadow volumes and stratified ray casting sample the light and \
@@ -181,6 +214,11 @@ pub const PAGES: [Page; 8] = [
     },
     Page {
         topic: Topic::LightVolumes,
+        live: Live {
+            scene: "light-volumes-cornell",
+            sets: &[],
+            methods: &[],
+        },
         intro: "A scattering medium in the point-lit Cornell box. Max's light volumes cut each \
                 viewing ray into lit and dark intervals at the shadow volumes' polygons and \
                 integrate single scattering over the lit ones; ray marching, a shadow ray at \
@@ -203,6 +241,11 @@ pub const PAGES: [Page; 8] = [
     },
     Page {
         topic: Topic::Texture,
+        live: Live {
+            scene: "mip-mapping",
+            sets: &[],
+            methods: &[],
+        },
         intro: "A checkerboard plane running to the horizon, through every texture filter, \
                 measured against point sampling at 16 × 16 samples per pixel. Point sampling \
                 aliases into moiré; the mip-map (Williams 1983) and the summed-area table (Crow \
@@ -268,6 +311,11 @@ pub const PAGES: [Page; 8] = [
     },
     Page {
         topic: Topic::EnvironmentMapping,
+        live: Live {
+            scene: "reflection-mapping",
+            sets: &[],
+            methods: &[],
+        },
         intro: "Forty small chrome balls reflecting a cube-mapped sky, through each filter of \
                 the environment lookup, measured against point sampling at 16 × 16 samples per \
                 pixel: the mip level follows the footprint of the reflected direction between \
@@ -315,6 +363,11 @@ pub const PAGES: [Page; 8] = [
     },
     Page {
         topic: Topic::Radiosity,
+        live: Live {
+            scene: "radiosity-shooting",
+            sets: &[],
+            methods: &[],
+        },
         intro: "The Cornell box lit by radiosity alone: the full system gathered by Gauss–Seidel \
                 with form factors from Lambert's point-to-polygon formula (the reference: exact \
                 where nothing lies between, its occlusion sampled at five points of the patch), \
@@ -350,6 +403,11 @@ pub const PAGES: [Page; 8] = [
     },
     Page {
         topic: Topic::GlobalIllumination,
+        live: Live {
+            scene: "two-pass",
+            sets: &[],
+            methods: &[],
+        },
         intro: "Wallace, Cohen & Greenberg's two-pass method on the Cornell box with mirrors, one \
                 transfer mechanism at a time, measured against all of them together.",
         variants: &[

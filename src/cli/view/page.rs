@@ -1,5 +1,5 @@
 //! The viewer page's files (web/page/), embedded in the binary: `lumiere view`
-//! serves them, `lumiere gallery` writes them into the site.
+//! serves them (the static site takes them from tools/build-web.sh's folder).
 
 use include_dir::{Dir, include_dir};
 
@@ -10,20 +10,6 @@ pub fn file(path: &str) -> Option<(&'static [u8], &'static str)> {
     let path = if path.is_empty() { "index.html" } else { path };
     let file = PAGE.get_file(path)?;
     Some((file.contents(), media_type(path)))
-}
-
-/// Every file of the page, by its path.
-pub fn files() -> Vec<(&'static str, &'static [u8])> {
-    let mut out = Vec::new();
-    let mut folders = vec![&PAGE];
-    while let Some(dir) = folders.pop() {
-        for file in dir.files() {
-            out.push((file.path().to_str().unwrap_or_default(), file.contents()));
-        }
-        folders.extend(dir.dirs());
-    }
-    out.sort();
-    out
 }
 
 fn media_type(path: &str) -> &'static str {
