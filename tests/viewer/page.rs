@@ -89,6 +89,15 @@ pub fn check_page(browser: &mut Browser, url: &str) {
         .as_f64()
         .unwrap();
     assert!(yaw.abs() > 0.1, "yaw {yaw}");
+    // A scene of the user's files (an OBJ and its MTL, as a file chooser gives them).
+    let opened = browser.evaluate(
+        "(() => { const t = s => new TextEncoder().encode(s); \
+           return lumiere.openFiles([\
+             {name: 'box.obj', bytes: t('mtllib box.mtl\\nv 0 0 0\\nv 1 0 0\\nv 1 1 0\\nv 0 1 0\\nusemtl red\\nf 1 2 3 4\\n')},\
+             {name: 'box.mtl', bytes: t('newmtl red\\nKd 0.8 0.1 0.1\\n')}], undefined, ['camera.width=32', 'camera.height=32'])\
+           .then(f => { const p = f.pixels, i = (16 * 32 + 16) * 4; return [f.header.width, p[i] > 2 * p[i + 1]]; }, e => String(e)); })()",
+    );
+    assert_eq!(opened, json!([32, true]), "the OBJ's red quad");
     // A scene that cannot load: the command line's line, in the page.
     let said =
         browser.evaluate("lumiere.open('no-such-entry', []).then(() => 'opened', e => String(e))");

@@ -250,3 +250,24 @@ fn a_scene_that_cannot_load_is_one_line_before_any_server() {
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("no-such-entry"), "{stderr}");
 }
+
+#[test]
+fn ctrl_c_ends_the_server_and_frees_its_port() {
+    let mut server = Server::start(&["cornell-box-point", SIZE[0], SIZE[1], SIZE[2], SIZE[3]]);
+    let mut socket = server.socket();
+    exchange(
+        &mut socket,
+        Message::text(json!({"type": "open", "id": 1, "scene": "cornell-box-point"}).to_string()),
+    );
+    let kill = Command::new("kill")
+        .args(["-INT", &server.child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    // Interrupted, as any lumiere command: 128 + SIGINT, nothing left behind.
+    assert_eq!(server.child.wait().unwrap().code(), Some(130));
+    assert!(
+        TcpStream::connect(("127.0.0.1", server.port)).is_err(),
+        "the port is free"
+    );
+}
