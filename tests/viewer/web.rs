@@ -96,6 +96,11 @@ fn exact_hard_shadows_in_webassembly_equal_the_native_library() {
             .map(|(a, b)| (a - b).abs())
             .fold(0f32, f32::max);
         assert_eq!(image.len(), expected.len());
+        let differing = image.iter().zip(&expected).filter(|(a, b)| a != b).count();
+        eprintln!(
+            "{method}: {differing} of {} channels differ from native, by at most {worst}",
+            image.len()
+        );
         assert!(
             worst <= 1e-5 * brightest,
             "{method}: {worst} off, brightest {brightest}"
