@@ -50,11 +50,14 @@ rm -rf "$wheels"
 CARGO_TARGET_DIR="$root/python/target" "$python" -m maturin build --release \
     --manifest-path "$root/python/Cargo.toml" --out "$wheels" >&2
 wheel="$(ls "$wheels"/*.whl)"
-# What the wheel holds (its RECORD: each file's hash), not its zip's dates.
+# What the wheel holds: its RECORD (each file's hash), less the SBOM, whose serial
+# number and date change with every build.
 digest="$("$python" -c '
 import hashlib, sys, zipfile
 z = zipfile.ZipFile(sys.argv[1])
-print(hashlib.sha256(b"".join(z.read(n) for n in sorted(z.namelist()) if n.endswith(".dist-info/RECORD"))).hexdigest())
+record = next(n for n in z.namelist() if n.endswith(".dist-info/RECORD"))
+lines = [l for l in z.read(record).decode().splitlines() if "/sboms/" not in l]
+print(hashlib.sha256("\n".join(sorted(lines)).encode()).hexdigest())
 ' "$wheel")"
 if [ "$(cat "$env/.lumiere-wheel" 2>/dev/null)" != "$digest" ] ||
     ! (cd "$work" && "$python" -c 'import lumiere' >/dev/null 2>&1); then
@@ -175,13 +178,20 @@ def main(stage, paths):
         stem = os.path.splitext(name)[0]
         nb = nbformat.read(path, as_version=4)
         start = time.perf_counter()
-        with tempfile.TemporaryDirectory(prefix=f"lumiere-{stem}-") as cwd:
+        # The kernel's own stderr (ipykernel warns there that it talks over TCP on
+        # localhost) is kept, and shown when the notebook fails.
+        with tempfile.TemporaryDirectory(prefix=f"lumiere-{stem}-") as cwd, \
+                tempfile.TemporaryFile("w+") as log:
             client = nbclient.NotebookClient(
                 nb, timeout=TIMEOUT, kernel_name="python3",
                 resources={"metadata": {"path": cwd}})
             try:
-                client.execute()
+                client.execute(stderr=log)
             except Exception as e:  # a cell's error, a timeout, a dead kernel, ...
+                log.seek(0)
+                for line in log:
+                    if "Kernel is running over TCP without encryption" not in line:
+                        sys.stderr.write(line)
                 where = ""
                 for index, cell in enumerate(nb.cells):
                     if any(o.get("output_type") == "error" for o in cell.get("outputs", [])):

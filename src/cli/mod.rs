@@ -21,7 +21,6 @@ macro_rules! out {
 mod bench;
 mod bench_radiosity;
 mod bitmap_text;
-mod buffer_picture;
 mod check;
 mod compare;
 mod compare_checks;
@@ -37,6 +36,7 @@ mod render;
 mod shadow_polygons;
 mod show;
 mod timing;
+mod url;
 mod view;
 
 use anyhow::{Context, Result};

@@ -10,6 +10,7 @@ mod protocol;
 mod solve;
 mod view;
 
+pub use picture::buffer_picture;
 pub use protocol::{MAX_MESSAGE, Reply};
 
 use crate::catalogue;

@@ -9,7 +9,15 @@ use serde_json::{Value, json};
 
 /// Sends `message` (its `id` set) and returns the replies' headers and payloads.
 pub fn ask(session: &mut Session, message: Value) -> Vec<(Value, Vec<u8>)> {
-    let replies = session.handle_text(&message.to_string());
+    decoded(&session.handle_text(&message.to_string()))
+}
+
+/// The replies to a binary message, decoded as `ask`'s are.
+pub fn ask_binary(session: &mut Session, bytes: &[u8]) -> Vec<(Value, Vec<u8>)> {
+    decoded(&session.handle_binary(bytes))
+}
+
+fn decoded(replies: &[lumiere::viewer::Reply]) -> Vec<(Value, Vec<u8>)> {
     replies
         .iter()
         .map(|r| {
@@ -346,13 +354,7 @@ fn shooting_brightens_step_by_step_and_ends_as_render_does() {
         last = Some(session.tick());
     }
     let last = last.expect("the solve went on");
-    let (end, _) = one(
-        &last
-            .iter()
-            .map(|r| (r.header().unwrap(), r.payload().to_vec()))
-            .collect::<Vec<_>>(),
-        "frame",
-    );
+    let (end, _) = one(&decoded(&last), "frame");
     assert!(end["status"].as_str().unwrap().ends_with("done"), "{end}");
     let (_, values) = exported(&mut session, "image");
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
@@ -401,34 +403,20 @@ fn a_bad_message_gets_one_error_and_the_session_goes_on() {
         ),
     ];
     for (message, said) in &cases {
-        let replies: Vec<_> = session
-            .handle_text(message)
-            .iter()
-            .map(|r| (r.header().unwrap(), r.payload().to_vec()))
-            .collect();
+        let replies: Vec<_> = decoded(&session.handle_text(message));
         let line = error(&replies);
         assert!(line.contains(said), "{message}: {line}");
         assert!(!line.contains('\n'), "one line: {line}");
     }
     let oversized = " ".repeat(lumiere::viewer::MAX_MESSAGE + 1);
-    let line = error(
-        &session
-            .handle_text(&oversized)
-            .iter()
-            .map(|r| (r.header().unwrap(), vec![]))
-            .collect::<Vec<_>>(),
-    );
+    let line = error(&decoded(&session.handle_text(&oversized)));
     assert!(line.contains("MiB"), "{line}");
     for bytes in [
         &[1u8, 0][..],
         &[200, 0, 0, 0, b'{'][..],
         &[1, 0, 0, 0, b'x'][..],
     ] {
-        let replies: Vec<_> = session
-            .handle_binary(bytes)
-            .iter()
-            .map(|r| (r.header().unwrap(), vec![]))
-            .collect();
+        let replies: Vec<_> = ask_binary(&mut session, bytes);
         assert!(error(&replies).contains("binary message"), "{bytes:?}");
     }
     // The session still opens, and refuses what the scene lacks, in one line each.
@@ -505,11 +493,7 @@ fn scenes_open_from_files_sent_as_bytes() {
         &[("model/box.obj", obj), ("model/box.mtl", mtl)],
         &["camera.width=32", "camera.height=32"],
     );
-    let replies: Vec<_> = session
-        .handle_binary(&message)
-        .iter()
-        .map(|r| (r.header().unwrap(), r.payload().to_vec()))
-        .collect();
+    let replies: Vec<_> = ask_binary(&mut session, &message);
     let (scene, _) = one(&replies, "scene");
     assert_eq!(scene["title"], "model/box.obj");
     let (_, pixels) = one(&replies, "frame");
@@ -536,19 +520,11 @@ transform = [{ scale = 100.0 }]
         &[("scene.toml", toml), ("box.obj", obj), ("box.mtl", mtl)],
         &[],
     );
-    let replies: Vec<_> = session
-        .handle_binary(&message)
-        .iter()
-        .map(|r| (r.header().unwrap(), r.payload().to_vec()))
-        .collect();
+    let replies: Vec<_> = ask_binary(&mut session, &message);
     assert_eq!(one(&replies, "frame").0["width"], 24);
     // A scene naming a file it was not sent: the scene's own one-line error.
     let message = open_files("scene.toml", &[("scene.toml", toml)], &[]);
-    let replies: Vec<_> = session
-        .handle_binary(&message)
-        .iter()
-        .map(|r| (r.header().unwrap(), vec![]))
-        .collect();
+    let replies: Vec<_> = ask_binary(&mut session, &message);
     assert!(
         error(&replies).contains("box.obj"),
         "{:?}",
@@ -557,11 +533,7 @@ transform = [{ scale = 100.0 }]
     // Sizes that do not add up.
     let mut message = open_files("box.obj", &[("box.obj", obj)], &[]);
     message.pop();
-    let replies: Vec<_> = session
-        .handle_binary(&message)
-        .iter()
-        .map(|r| (r.header().unwrap(), vec![]))
-        .collect();
+    let replies: Vec<_> = ask_binary(&mut session, &message);
     assert!(
         error(&replies).contains("add up"),
         "{:?}",

@@ -163,7 +163,7 @@ pub fn render(
         for buffer in renderer.render_with_buffers(&names)?.buffers {
             let name = format!("buffer-{}.png", buffer.name);
             image_io::save(
-                &super::super::buffer_picture::displayed(&buffer, exposure),
+                &lumiere::viewer::buffer_picture(&buffer, exposure).0,
                 &dir.join(&name),
                 1.0,
             )?;

@@ -1,6 +1,7 @@
 //! The gallery's pages as HTML: one stylesheet, no scripts, no fonts, nothing
 //! fetched from elsewhere; images scale with the window and text wraps.
 
+use super::super::url::percent_encoded;
 use super::cards::{Card, CardSpec};
 use lumiere::catalogue::{Algorithm, Topic};
 use std::fmt::Write as _;
@@ -165,18 +166,6 @@ pub fn live_viewer(live: &super::topics::Live, width: u32, height: u32, topic: &
         query_full = escape(&query.replacen("embed=1&", "", 1)),
         topic = escape(topic),
     )
-}
-
-/// `text` as a URL's query value.
-fn percent_encoded(text: &str) -> String {
-    text.bytes()
-        .map(|b| match b {
-            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'-' | b'_' | b'.' | b'~' => {
-                (b as char).to_string()
-            }
-            _ => format!("%{b:02X}"),
-        })
-        .collect()
 }
 
 /// One image of the side-by-side comparison.

@@ -6,6 +6,7 @@
 //! loopback (a page elsewhere reaching it by DNS rebinding) is refused, and so is
 //! a WebSocket opened by a page of another origin.
 
+use super::super::url::percent_encoded;
 use super::page;
 use anyhow::{Context, Result};
 use lumiere::viewer::{MAX_MESSAGE, Reply, Session};
@@ -213,16 +214,4 @@ fn socket(stream: TcpStream, mut session: Session) -> Result<()> {
             std::process::exit(0);
         }
     }
-}
-
-/// `text` as a URL's query value.
-fn percent_encoded(text: &str) -> String {
-    text.bytes()
-        .map(|b| match b {
-            b'A'..=b'Z' | b'a'..=b'z' | b'0'..=b'9' | b'-' | b'_' | b'.' | b'~' => {
-                (b as char).to_string()
-            }
-            _ => format!("%{b:02X}"),
-        })
-        .collect()
 }
