@@ -374,3 +374,54 @@ fn bad_input_is_one_line_and_leaves_nothing_behind() {
     assert!(dir.path().join("mine/notes.txt").exists());
     assert_eq!(leftovers(dir.path()), Vec::<String>::new());
 }
+
+#[test]
+fn notebook_pages_are_copied_and_linked_and_a_missing_viewer_is_one_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let notebooks = dir.path().join("executed");
+    std::fs::create_dir(&notebooks).unwrap();
+    let page = "<!doctype html><title>hard shadows</title><p>executed</p>";
+    std::fs::write(notebooks.join("02-hard-shadows.html"), page).unwrap();
+    std::fs::write(notebooks.join("05-texture.html"), page).unwrap();
+    let folder = notebooks.to_string_lossy().into_owned();
+    let run = gallery(
+        &[
+            "shadow-volumes",
+            "--test-size",
+            "-o",
+            "site",
+            "--notebooks",
+            &folder,
+        ],
+        dir.path(),
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let site = dir.path().join("site");
+    assert_eq!(
+        std::fs::read_to_string(site.join("notebooks/02-hard-shadows.html")).unwrap(),
+        page
+    );
+    let topic = std::fs::read_to_string(site.join("hard-shadows.html")).unwrap();
+    assert!(
+        topic.contains(r#"<a href="notebooks/02-hard-shadows.html">"#),
+        "the topic links its notebook"
+    );
+    // A notebook folder without pages, and a viewer folder without a build.
+    let empty = dir.path().join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let empty = empty.to_string_lossy().into_owned();
+    let run = gallery(
+        &["shadow-volumes", "-o", "other", "--notebooks", &empty],
+        dir.path(),
+    );
+    assert_eq!(run.code, 1);
+    assert!(run.stderr.contains("no notebook page"), "{}", run.stderr);
+    let run = gallery(
+        &["shadow-volumes", "-o", "other", "--viewer", &empty],
+        dir.path(),
+    );
+    assert_eq!(run.code, 1);
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    assert!(run.stderr.contains("tools/build-web.sh"), "{}", run.stderr);
+    assert!(!dir.path().join("other").exists());
+}
