@@ -89,6 +89,35 @@ pub fn check_page(browser: &mut Browser, url: &str) {
         .as_f64()
         .unwrap();
     assert!(yaw.abs() > 0.1, "yaw {yaw}");
+    // Two fingers moving apart on a touch screen zoom in.
+    let distance = browser
+        .evaluate("lumiere.state().orbit.distance")
+        .as_f64()
+        .unwrap();
+    browser.call(
+        "Emulation.setTouchEmulationEnabled",
+        json!({"enabled": true, "maxTouchPoints": 2}),
+    );
+    let touch = |kind: &str, spread: f64| {
+        json!({"type": kind, "touchPoints": if kind == "touchEnd" { json!([]) } else {
+            json!([{"x": x - spread, "y": y, "id": 0}, {"x": x + spread, "y": y, "id": 1}]) }})
+    };
+    browser.call("Input.dispatchTouchEvent", touch("touchStart", 20.0));
+    for k in 1..=4 {
+        browser.call(
+            "Input.dispatchTouchEvent",
+            touch("touchMove", 20.0 + 20.0 * k as f64),
+        );
+    }
+    browser.call("Input.dispatchTouchEvent", touch("touchEnd", 0.0));
+    let pinched = browser
+        .evaluate("lumiere.state().orbit.distance")
+        .as_f64()
+        .unwrap();
+    assert!(
+        pinched < 0.7 * distance,
+        "a pinch from 40 to 200 px apart: distance {distance} -> {pinched}"
+    );
     // A scene of the user's files (an OBJ and its MTL, as a file chooser gives them).
     let opened = browser.evaluate(
         "(() => { const t = s => new TextEncoder().encode(s); \
