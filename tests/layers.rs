@@ -2,8 +2,8 @@
 //! (image input and output) → texture → scene → raster → shadow, shading,
 //! radiosity, media (siblings) → global (ray tracing and the two-pass method's
 //! second pass, over shading's light model and radiosity's solution) → render →
-//! catalogue and export → the loader → the command line, the crate root and its
-//! internals. A module names only modules
+//! catalogue and export → the loader → the viewer's engine → the command line, the
+//! crate root and its internals. A module names only modules
 //! below its own layer (and its own): read from the sources, every `crate::` path
 //! checked. Inside a folder, the files import one another without a circle.
 
@@ -22,7 +22,8 @@ fn layer(module: &str) -> Option<u32> {
         "render" => 8,
         "catalogue" | "export" => 9,
         "load" => 10,
-        "cli" | "main" | "lib" | "internals" => 11,
+        "viewer" => 11,
+        "cli" | "main" | "lib" | "internals" => 12,
         _ => return None,
     })
 }

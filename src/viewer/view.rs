@@ -12,7 +12,7 @@ use super::solve::SteppedShooting;
 use crate::catalogue::{self, Algorithm};
 use crate::error::{Error, Result};
 use crate::image_io::Image;
-use crate::render::Renderer;
+use crate::render::{Frame, Renderer};
 use crate::scene::{Light, Scene};
 use crate::settings::Solver;
 use glam::DVec3;
@@ -38,9 +38,9 @@ pub enum Source {
 impl Source {
     pub fn load(&self, sets: &[String]) -> Result<Scene> {
         match self {
-            Source::Spec(spec) => crate::load_scene(spec, sets),
+            Source::Spec(spec) => crate::load::load_scene(spec, sets),
             Source::Files { main, files } => {
-                crate::scene_from_files(main, files.as_ref().clone(), sets)
+                crate::load::scene_from_files(main, files.as_ref().clone(), sets)
             }
         }
     }
@@ -261,7 +261,7 @@ impl View {
     }
 
     /// The linear image of `choices` from the orbit's camera, and its time.
-    fn image(&mut self, choices: &[usize], buffers: &[String]) -> Result<(crate::Frame, f64)> {
+    fn image(&mut self, choices: &[usize], buffers: &[String]) -> Result<(Frame, f64)> {
         let (width, height) = (self.scene.camera.width, self.scene.camera.height);
         let camera = self.orbit.camera(width, height);
         let supersample = match self.quality {
@@ -313,10 +313,10 @@ impl View {
         let (second, time) = self.image(&self.with_first(other), &[])?;
         self.record(Some(other), time);
         let (first, second) = (frame.image, second.image);
-        let c = crate::compare_images(&first, &second, self.exposure)?;
+        let c = crate::image_io::compare(&first, &second, self.exposure)?;
         let (image, exposure) = if self.difference {
             (
-                crate::difference_image(&first, &second, self.exposure, 4.0),
+                crate::image_io::difference_image(&first, &second, self.exposure, 4.0),
                 1.0,
             )
         } else {
