@@ -159,6 +159,7 @@ pub fn load(
         Environment {
             name: name.to_string(),
             source,
+            procedural: e.procedural.is_some(),
         },
         e.hide.clone(),
     ))

@@ -295,6 +295,9 @@ pub struct Environment {
     pub name: String,
     /// Where its texels come from.
     pub source: EnvironmentSource,
+    /// Whether it is generated from a procedural environment (and so can be laid
+    /// out in any layout), not read from images laid out one way.
+    pub procedural: bool,
 }
 
 #[derive(Clone, Debug)]

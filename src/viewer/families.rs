@@ -45,7 +45,7 @@ pub fn families(scene: &Scene, load: &Load) -> (Vec<Family>, Vec<usize>) {
     found.extend(medium(scene, load));
     found.extend(shadows(scene));
     found.extend(filter(scene));
-    found.extend(environment(scene, load));
+    found.extend(environment(scene));
     found
         .into_iter()
         .filter(|(f, _)| f.options.len() > 1)
@@ -249,41 +249,35 @@ fn filter(scene: &Scene) -> Option<(Family, usize)> {
     ))
 }
 
-/// The layouts every map of the scene can be given (a captured cube map has one).
-fn environment(scene: &Scene, load: &Load) -> Option<(Family, usize)> {
+/// The layouts of the scene's environment maps when all are procedural (an
+/// image's layout is its file's; a captured map is a cube).
+fn environment(scene: &Scene) -> Option<(Family, usize)> {
     let maps: Vec<_> = scene
         .environments
         .iter()
-        .filter_map(|e| match &e.source {
-            EnvironmentSource::Map(map) => Some((e.name.clone(), map.layout())),
-            EnvironmentSource::Capture(_) => None,
+        .map(|e| match &e.source {
+            EnvironmentSource::Map(map) if e.procedural => Some((e.name.clone(), map.layout())),
+            _ => None,
         })
-        .collect();
+        .collect::<Option<_>>()?;
     let current = maps.first()?.1;
     let layouts = [
         (Layout::LatLong, "Blinn & Newell 1976"),
         (Layout::Sphere, "Miller & Hoffman 1984"),
         (Layout::Cube, "Greene 1986"),
     ];
-    let mut options = Vec::new();
-    let mut chosen = 0;
-    for (layout, paper) in layouts {
-        let sets: Vec<String> = maps
-            .iter()
-            .map(|(name, _)| set(&format!("environments.{name}.layout"), layout.name()))
-            .collect();
-        if layout != current && load(&sets).is_err() {
-            continue;
-        }
-        if layout == current {
-            chosen = options.len();
-        }
-        options.push(Choice {
+    let chosen = layouts.iter().position(|l| l.0 == current)?;
+    let options = layouts
+        .into_iter()
+        .map(|(layout, paper)| Choice {
             name: layout.name().into(),
             paper: paper.into(),
-            sets,
-        });
-    }
+            sets: maps
+                .iter()
+                .map(|(name, _)| set(&format!("environments.{name}.layout"), layout.name()))
+                .collect(),
+        })
+        .collect();
     Some((
         Family {
             name: "environment",

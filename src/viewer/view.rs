@@ -77,6 +77,9 @@ pub struct View {
     pub entry: Option<Algorithm>,
     pub families: Vec<Family>,
     pub choices: Vec<usize>,
+    /// The options the scene itself chose: their renderer draws the scene as
+    /// loaded, without loading it again.
+    initial: Vec<usize>,
     kept: Vec<Kept>,
     pub orbit: Orbit,
     /// Each light's offset from where the scene put it.
@@ -118,6 +121,7 @@ impl View {
             sets,
             entry,
             families,
+            initial: choices.clone(),
             choices,
             kept: Vec::new(),
             split: None,
@@ -151,11 +155,15 @@ impl View {
             let kept = self.kept.remove(k);
             self.kept.push(kept);
         } else {
-            let mut sets = self.sets.clone();
-            for (family, &c) in self.families.iter().zip(choices) {
-                sets.extend(family.options[c].sets.iter().cloned());
-            }
-            let scene = self.source.load(&sets)?;
+            let scene = if choices == self.initial {
+                self.scene.clone()
+            } else {
+                let mut sets = self.sets.clone();
+                for (family, &c) in self.families.iter().zip(choices) {
+                    sets.extend(family.options[c].sets.iter().cloned());
+                }
+                self.source.load(&sets)?
+            };
             let mut renderer = Renderer::new(scene);
             renderer.check()?;
             for (index, offset) in self.offsets.iter().enumerate() {

@@ -404,7 +404,7 @@ pub const PAGES: [Page; 8] = [
     Page {
         topic: Topic::GlobalIllumination,
         live: Live {
-            scene: "two-pass",
+            scene: "ray-tracing-cornell",
             sets: &[],
             methods: &[],
         },
