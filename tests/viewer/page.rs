@@ -89,6 +89,40 @@ pub fn check_page(browser: &mut Browser, url: &str) {
         .as_f64()
         .unwrap();
     assert!(yaw.abs() > 0.1, "yaw {yaw}");
+    // The keys of the window: a number chooses the method, s splits with the next,
+    // d shows the difference, b the buffers.
+    let key = |browser: &mut Browser, key: &str| {
+        for kind in ["keyDown", "keyUp"] {
+            browser.call(
+                "Input.dispatchKeyEvent",
+                json!({"type": kind, "key": key, "text": key}),
+            );
+        }
+        browser.evaluate(
+            "new Promise(r => { const t = setInterval(() => { \
+               if (!lumiere.state().inFlight && !lumiere.state().pending) { clearInterval(t); r(true); } }, 20); })",
+        );
+    };
+    let options = browser.evaluate("lumiere.state().scene.families[0].options.map(o => o.name)");
+    key(browser, "2");
+    assert_eq!(
+        browser.evaluate("lumiere.lastFrame().header.method"),
+        options[1]
+    );
+    key(browser, "s");
+    assert_eq!(browser.evaluate("lumiere.state().split"), options[2]);
+    key(browser, "d");
+    assert_eq!(
+        browser.evaluate("lumiere.lastFrame().header.split != null"),
+        json!(true)
+    );
+    key(browser, "s");
+    key(browser, "b");
+    assert_eq!(
+        browser.evaluate("lumiere.lastFrame().header.buffer.name"),
+        browser.evaluate("lumiere.lastFrame().header.buffers[0]")
+    );
+    browser.evaluate("lumiere.buffer(null).then(() => lumiere.split(null, false))");
     // Two fingers moving apart on a touch screen zoom in.
     let distance = browser
         .evaluate("lumiere.state().orbit.distance")

@@ -578,3 +578,32 @@ fn every_family_a_scene_offers_is_switched() {
         }
     }
 }
+
+#[test]
+fn a_gltf_scene_sent_as_bytes_draws_as_the_library_reads_it_from_disk() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("box.gltf");
+    let sets: Vec<String> = BOX.iter().map(|s| s.to_string()).collect();
+    let scene = load_scene("cornell-box-point", &sets).unwrap();
+    let options = lumiere::export::Options {
+        format: lumiere::export::Format::Gltf,
+        spp: 1,
+        integrator: None,
+        area_samples: 1,
+    };
+    lumiere::export::export(&scene, &options, &path).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    let mut session = Session::new();
+    let replies = ask_binary(
+        &mut session,
+        &open_files("box.gltf", &[("box.gltf", &bytes)], &BOX),
+    );
+    one(&replies, "scene");
+    let (_, values) = exported(&mut session, "image");
+    let from_disk = Renderer::new(load_scene(path.to_str().unwrap(), &sets).unwrap())
+        .render()
+        .unwrap();
+    let expected: Vec<f32> = from_disk.pixels.iter().flat_map(|p| p.to_array()).collect();
+    same(&values, &expected, "the glTF scene's image");
+    assert!(expected.iter().any(|v| *v > 0.0), "the glTF scene is lit");
+}

@@ -335,6 +335,7 @@ function showFrame(reply, owner) {
   draw(header, pixels);
   frame = { header, pixels };
   frameCount += 1;
+  updateBuffers(header.buffers);
   if (owner) {
     roundTrip = performance.now() - owner.sentAt;
     if (owner.view) flow.confirmed = owner.view;
@@ -498,6 +499,16 @@ function buildLights(lights) {
     option.disabled = !light.movable; // Tab still names it, as the native window does
     return option;
   }));
+}
+
+/** The buffers come with each frame: they depend on the method shown. */
+function updateBuffers(buffers) {
+  if (!buffers || !view.scene) return;
+  const known = view.scene.buffers ?? [];
+  if (known.length === buffers.length && known.every((name, i) => name === buffers[i])) return;
+  view.scene.buffers = buffers;
+  buildBuffers(buffers);
+  $('buffer-select').value = view.buffer ?? '';
 }
 
 function buildBuffers(buffers) {
