@@ -1,7 +1,7 @@
 //! `lumiere contact-sheet`: every catalogue entry rendered small, in catalogue order
 //! (topic by topic), each under its id: the README's picture of what lumiere does.
 
-use super::bitmap_text::for_each_lit_pixel;
+use super::bitmap_text::{self, for_each_lit_pixel};
 use anyhow::{Context, Result};
 use lumiere::catalogue::{self, Topic};
 use lumiere::{Renderer, load_scene, write_atomically};
@@ -20,8 +20,10 @@ pub struct Args {
 
 /// Each picture fits this box, its entry's aspect kept.
 const CELL: (u32, u32) = (160, 120);
-/// Two lines of 8-pixel text under each picture.
-const LABEL: u32 = 22;
+/// Two lines of text under each picture.
+const LABEL: u32 = 3 + LINE + bitmap_text::HEIGHT as u32;
+/// From one line of a label to the next.
+const LINE: u32 = bitmap_text::HEIGHT as u32 + 1;
 const GAP: u32 = 4;
 const BACKGROUND: [u8; 3] = [24, 24, 28];
 const INK: [u8; 3] = [225, 225, 230];
@@ -107,8 +109,11 @@ fn tile(pictures: &[Picture], columns: u32) -> (u32, u32, Vec<u8>) {
                 put(x0 + x, y0 + y, [p.srgb[j], p.srgb[j + 1], p.srgb[j + 2]]);
             }
         }
-        for (line, text) in label_lines(&p.id, (CELL.0 / 8) as usize).iter().enumerate() {
-            let y_text = top + CELL.1 + 3 + 10 * line as u32;
+        for (line, text) in label_lines(&p.id, CELL.0 as usize / bitmap_text::ADVANCE)
+            .iter()
+            .enumerate()
+        {
+            let y_text = top + CELL.1 + 3 + LINE * line as u32;
             for_each_lit_pixel(text, 1, |x, y| {
                 if (x as u32) < CELL.0 {
                     put(left + x as u32, y_text + y as u32, INK)
