@@ -1,8 +1,9 @@
 //! The method families a scene lets the viewer switch between: the global method
 //! (Whitted, the two-pass methods), the radiosity solver (gathering, shooting),
-//! a medium's single scattering (light volumes, ray marching), the shadow method, the texture filter and the environment maps' layout. Each
-//! option is a list of `key=value` overrides, checked on the scene before it is
-//! offered: an option the renderer would refuse is not in the list.
+//! a medium's single scattering (light volumes, ray marching), the shadow method,
+//! the texture filter and the environment maps' layout. Each option is a list of
+//! `key=value` overrides, checked on the scene before it is offered: an option the
+//! renderer would refuse is not in the list.
 
 use crate::catalogue;
 use crate::error::Result;
@@ -70,28 +71,20 @@ fn global(scene: &Scene, load: &Load) -> Option<(Family, usize)> {
         GlobalMethod::TwoPass,
         GlobalMethod::RushmeierTorrance,
     ];
-    let mut options = Vec::new();
-    let mut chosen = 0;
-    for method in methods {
+    let candidates = methods.map(|method| {
         let mut sets = vec![set("global.method", method.name())];
         if method == GlobalMethod::RayTracing && scene.shadows.method != ShadowMethod::None {
             // Whitted casts his own shadow rays.
             sets.push(set("shadows.method", "none"));
         }
-        let works =
-            method == current || load(&sets).is_ok_and(|s| Renderer::new(s).check().is_ok());
-        if !works {
-            continue;
-        }
-        if method == current {
-            chosen = options.len();
-        }
-        options.push(Choice {
+        let choice = Choice {
             name: method.name().into(),
             paper: paper(method.name()),
             sets,
-        });
-    }
+        };
+        (method, choice)
+    });
+    let (options, chosen) = accepted(current, candidates, load);
     Some((
         Family {
             name: "global",
@@ -100,6 +93,26 @@ fn global(scene: &Scene, load: &Load) -> Option<(Family, usize)> {
         },
         chosen,
     ))
+}
+
+/// The candidates the renderer accepts once loaded (the scene's own always), and
+/// where the scene's own is among them.
+fn accepted<M: PartialEq>(
+    current: M,
+    candidates: impl IntoIterator<Item = (M, Choice)>,
+    load: &Load,
+) -> (Vec<Choice>, usize) {
+    let mut options = Vec::new();
+    let mut chosen = 0;
+    for (method, choice) in candidates {
+        if method == current {
+            chosen = options.len();
+        } else if !load(&choice.sets).is_ok_and(|s| Renderer::new(s).check().is_ok()) {
+            continue;
+        }
+        options.push(choice);
+    }
+    (options, chosen)
 }
 
 /// Gathering and shooting, on a plain radiosity scene.
@@ -138,7 +151,7 @@ fn solver(scene: &Scene) -> Option<(Family, usize)> {
 /// Max's light volumes and the ray-marched reference, in a scene with a medium.
 fn medium(scene: &Scene, load: &Load) -> Option<(Family, usize)> {
     let current = scene.medium.as_ref()?.method;
-    let methods = [
+    let candidates = [
         (
             MediumMethod::LightVolumes,
             "light-volumes",
@@ -149,23 +162,17 @@ fn medium(scene: &Scene, load: &Load) -> Option<(Family, usize)> {
             "ray-marching",
             "the reference".into(),
         ),
-    ];
-    let mut options = Vec::new();
-    let mut chosen = 0;
-    for (method, name, paper) in methods {
+    ]
+    .map(|(method, name, paper)| {
         let sets = vec![set("medium.method", name)];
-        if method != current && !load(&sets).is_ok_and(|s| Renderer::new(s).check().is_ok()) {
-            continue;
-        }
-        if method == current {
-            chosen = options.len();
-        }
-        options.push(Choice {
+        let choice = Choice {
             name: name.into(),
             paper,
             sets,
-        });
-    }
+        };
+        (method, choice)
+    });
+    let (options, chosen) = accepted(current, candidates, load);
     Some((
         Family {
             name: "medium",

@@ -59,6 +59,10 @@ struct Kept {
     renderer: Renderer,
     /// A shooting solve under way, its state handed to the renderer as it goes.
     shooting: Option<SteppedShooting>,
+    /// The buffers its frames can show, asked once: they follow from the scene's
+    /// methods, which a kept renderer never changes (moving a light or the camera
+    /// does not).
+    buffers: Option<Vec<String>>,
 }
 
 /// What a frame showed, for its header.
@@ -186,6 +190,7 @@ impl View {
                 choices: choices.to_vec(),
                 renderer,
                 shooting,
+                buffers: None,
             });
         }
         Ok(self.kept.last_mut().expect("kept above"))
@@ -360,12 +365,11 @@ impl View {
     pub fn buffers(&mut self) -> Result<Vec<String>> {
         let choices = self.choices.clone();
         let kept = self.kept(&choices)?;
-        Ok(kept
-            .renderer
-            .available_buffers()?
-            .into_iter()
-            .map(|b| b.name)
-            .collect())
+        if kept.buffers.is_none() {
+            let available = kept.renderer.available_buffers()?;
+            kept.buffers = Some(available.into_iter().map(|b| b.name).collect());
+        }
+        Ok(kept.buffers.clone().unwrap_or_default())
     }
 
     /// The linear values of the image or of buffer `what`, unrounded, at full

@@ -607,3 +607,52 @@ fn a_gltf_scene_sent_as_bytes_draws_as_the_library_reads_it_from_disk() {
     same(&values, &expected, "the glTF scene's image");
     assert!(expected.iter().any(|v| *v > 0.0), "the glTF scene is lit");
 }
+
+#[test]
+fn every_option_offered_renders_and_those_the_renderer_refuses_are_not_offered() {
+    // Refused, so not offered: the two-pass method on glass (transmission is
+    // Rushmeier & Torrance's), ray tracing where global.window_depth is set (a
+    // two-pass setting it would ignore).
+    let mut offered_globals = Vec::new();
+    for entry in [
+        "ray-tracing",
+        "ray-tracing-cornell",
+        "two-pass",
+        "light-volumes-spot",
+    ] {
+        let mut session = Session::new();
+        let sets = ["camera.width=16", "camera.height=12"];
+        let replies = ask(
+            &mut session,
+            json!({"type": "open", "id": 1, "scene": entry, "sets": sets}),
+        );
+        let (scene, _) = one(&replies, "scene");
+        for family in scene["families"].as_array().unwrap() {
+            let name = family["name"].as_str().unwrap();
+            for option in family["options"].as_array().unwrap() {
+                if name == "global" {
+                    offered_globals.push(format!("{entry}: {}", option["name"]));
+                }
+                let replies = ask(
+                    &mut session,
+                    json!({"type": "set", "id": 2, "choices": {name: option["name"]}}),
+                );
+                assert!(
+                    replies.iter().all(|r| r.0["type"] != "error"),
+                    "{entry}: {name} {}: {:?}",
+                    option["name"],
+                    headers(&replies)
+                );
+                one(&replies, "frame");
+            }
+        }
+    }
+    let offered = |text: &str| offered_globals.iter().any(|o| o == text);
+    for (option, expected) in [
+        ("ray-tracing-cornell: \"two-pass\"", false),
+        ("two-pass: \"ray-tracing\"", false),
+        ("two-pass: \"rushmeier-torrance\"", true),
+    ] {
+        assert_eq!(offered(option), expected, "{option} in {offered_globals:?}");
+    }
+}
