@@ -56,8 +56,15 @@ impl Server {
     pub fn request(&self, head: &str) -> (u16, Vec<u8>) {
         let mut stream = TcpStream::connect(("127.0.0.1", self.port)).unwrap();
         stream.write_all(head.as_bytes()).unwrap();
+        // A refusal closes the connection; an answer that keeps it open (an
+        // upgrade let through) is read for as long as the timeout.
+        stream
+            .set_read_timeout(Some(Duration::from_secs(10)))
+            .unwrap();
         let mut answer = Vec::new();
-        stream.read_to_end(&mut answer).unwrap();
+        if let Err(e) = stream.read_to_end(&mut answer) {
+            assert!(!answer.is_empty(), "no answer to {head:.60}: {e}");
+        }
         let text = String::from_utf8_lossy(&answer);
         let code = text.split(' ').nth(1).unwrap().parse().unwrap();
         let body = match answer.windows(4).position(|w| w == b"\r\n\r\n") {
