@@ -529,8 +529,6 @@ def write(args, bench, point, quad, curved, growth, memory):
             shown = [f"{t:.3f} s" if t else f"> {LIMIT} s" for t in times]
             out.append(f"| {method} | " + " | ".join(shown) + f" | {exponent:.2f} |")
         out.append("")
-    if not args.quick and args.output == os.path.join(ROOT, "BENCHMARKS.md"):
-        write_readme(bench, growth)
     # What follows KEEP in the file (the analysis written by hand) is kept as it is.
     kept = ""
     if os.path.exists(args.output):
@@ -543,44 +541,6 @@ def write(args, bench, point, quad, curved, growth, memory):
         if kept:
             f.write("\n" + kept)
     print(f"wrote {args.output}")
-
-
-# The README's speed tables lie between these two lines; the full run rewrites them.
-README_BEGIN = "<!-- speed tables: written by bench/peers.sh -->"
-README_END = "<!-- end of the speed tables -->"
-
-
-def write_readme(bench, growth):
-    """The README's speed tables: the point-lit box, the quad-lit box and the curved
-    scene as lumiere and the fastest peer render them, and the growth in polygons."""
-    out = [README_BEGIN, "", "| scene | renderer | time | FLIP |", "|---|---|---|---|"]
-    for title, _, _, rows in bench.rows:
-        if "every bounce" in title:
-            continue
-        scene = title.replace("The ", "the ", 1).split(", ")[0]
-        for label, median, _, _, _, f, _ in rows:
-            if "scalar_rgb" in label:
-                continue
-            out.append(f"| {scene} | {label} | {median:.3f} s | {f:.4f} |")
-    rows = [g for g in growth if g[0] == "polygons"]
-    values = rows[0][4]
-    out += ["", "| polygons (512 x 512, one light) | " + " | ".join(f"{v:,}" for v in values)
-            + " | exponent |", "|---|" + "---|" * (len(values) + 1)]
-    for _, method, times, exponent, _ in rows:
-        shown = [f"{t:.2f} s" if t else f"> {LIMIT} s" for t in times]
-        out.append(f"| {method} | " + " | ".join(shown) + f" | {exponent:.2f} |")
-    out += ["", README_END]
-    path = os.path.join(ROOT, "README.md")
-    with open(path) as f:
-        text = f.read()
-    if README_BEGIN not in text or README_END not in text:
-        print(f"{path}: no speed tables to rewrite (markers missing)")
-        return
-    head, rest = text.split(README_BEGIN, 1)
-    tail = rest.split(README_END, 1)[1]
-    with open(path, "w") as f:
-        f.write(head + "\n".join(out) + tail)
-    print(f"wrote the speed tables of {path}")
 
 
 if __name__ == "__main__":

@@ -12,8 +12,6 @@
 //! rewrites both references and still fails, so that someone looks at each before
 //! committing it.
 
-mod common;
-
 use libtest_mimic::{Arguments, Failed, Trial};
 use lumiere::internals::image_io::{self, Image};
 use lumiere::{catalogue, load_scene};
@@ -41,15 +39,13 @@ fn root() -> PathBuf {
 }
 
 fn render_entry(id: &str) -> Result<(Image, f32), Failed> {
-    let a = catalogue::entry(id)
-        .map_err(|e| common::error_line(&e))?
-        .algorithm;
+    let a = catalogue::entry(id).map_err(|e| e.line())?.algorithm;
     let sets = [
         format!("camera.width={}", a.test_width),
         format!("camera.height={}", a.test_height),
     ];
-    let scene = load_scene(id, &sets).map_err(|e| common::error_line(&e))?;
-    let image = lumiere::render(&scene).map_err(|e| common::error_line(&e))?;
+    let scene = load_scene(id, &sets).map_err(|e| e.line())?;
+    let image = lumiere::render(&scene).map_err(|e| e.line())?;
     Ok((image, scene.render.exposure))
 }
 
@@ -78,8 +74,8 @@ fn check(id: &str) -> Result<(), Failed> {
         )
         .into());
     }
-    let expected = image_io::load(&golden).map_err(|e| common::error_line(&e))?;
-    let actual = image_io::load_png_bytes(&actual).map_err(|e| common::error_line(&e))?;
+    let expected = image_io::load(&golden).map_err(|e| e.line())?;
+    let actual = image_io::load_png_bytes(&actual).map_err(|e| e.line())?;
     if (expected.width, expected.height) != (actual.width, actual.height) {
         return Err(format!(
             "{id}: golden is {}x{}, render is {}x{}; regenerate with `{regenerate}`",
@@ -111,7 +107,7 @@ fn check_linear(id: &str, image: &Image, path: &Path, regenerate: &str) -> Resul
         )
         .into());
     }
-    let expected = image_io::load(path).map_err(|e| common::error_line(&e))?;
+    let expected = image_io::load(path).map_err(|e| e.line())?;
     if (expected.width, expected.height) != (image.width, image.height) {
         return Err(format!(
             "{id}: linear reference is {}x{}; regenerate with `{regenerate}`",

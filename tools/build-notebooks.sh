@@ -47,7 +47,7 @@ requirements=("maturin>=1.5,<2" nbconvert nbclient nbformat "ipykernel>=6.29,<7"
 exec 8>"$work/build.lock"
 flock 8
 
-# The wheel as tests/python_package.rs builds it, in python/target (python/ is a
+# The wheel as tests/suite/project/python_package.rs builds it, in python/target (python/ is a
 # workspace of its own) so that a second build is incremental.
 wheels="$work/wheels"
 rm -rf "$wheels"

@@ -12,7 +12,7 @@ into the radiosity solution, its direct light exact per sample).
 With --quad: the box lit by its quad light, direct light only (Mitsuba's `direct`
 integrator, one bounce, emitter sampling), against `render cornell-box --shadows
 umbra-penumbra --supersample 4` (another method with --shadows and --set). This is the
-reference held in tests/references/ for tests/flip_reference.rs:
+reference held in tests/references/ for tests/suite/global/mitsuba.rs:
 
     python3 tools/mitsuba_reference.py --quad --spp 4096 --self-check \
         --write tests/references/cornell-box-direct-mitsuba.pfm

@@ -12,7 +12,7 @@
 //!   sees, or a reflected or refracted ray.
 //!
 //! The hierarchy changes the cost of a query, never its answer: both equal a loop
-//! over every polygon (see `tests/ray_queries.rs`).
+//! over every polygon (see `tests/suite/scene/ray_queries.rs`).
 
 use super::Polygon;
 use crate::geometry::bvh::{Aabb, Bvh};

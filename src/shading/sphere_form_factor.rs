@@ -19,7 +19,7 @@
 //!
 //! The three pieces meet continuously at φ = π/2 ∓ α. The irradiance is E = π L F
 //! for a sphere of radiance L. The formula is checked against quadrature over the
-//! sphere in tests/lights.rs.
+//! sphere in tests/suite/shading/lights.rs.
 
 use std::f64::consts::PI;
 

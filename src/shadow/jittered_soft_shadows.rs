@@ -31,7 +31,7 @@
 //! at its distance ρ. The course weighs the cells by area alone; that share is the
 //! irradiance's only as r/D → 0 and counts the part of the disc below the horizon
 //! as light the receiver gets, so a sphere near or across a receiver's plane came
-//! out too dark or too bright (measured in tests/soft_shadows.rs). A ray is blocked
+//! out too dark or too bright (measured in tests/suite/shadow/soft_ray_casting.rs). A ray is blocked
 //! by any polygon between x and its point (the receiver itself excepted); sphere
 //! lights cast no shadow of their own. Scene keys: `[shadows] method = "jittered-soft-shadows"`,
 //! `rings`, `sampling = "regular" | "jittered"`, `seed`.

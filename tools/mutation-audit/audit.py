@@ -2,9 +2,9 @@
 """The mutation audit: every mutation of the lists beside this script is put behind
 an environment switch in a copy of the repository (`(if crate::mutant::on(ID) {
 MUTATED } else { ORIGINAL })`), the copy is built once, and for each mutant the test
-binaries run (goldens, the contact sheet, the README examples, the gallery, viewer
+suite's modules run one by one (goldens, the contact sheet, the README examples, the gallery, viewer
 and installer tests left out: they pin outputs or test tools, not methods), the one
-named after the mutated module first, then the fastest, stopping at the first that
+named after the mutated module first, then those of its folder, then the fastest, stopping at the first that
 fails. Proptests run with a fixed seed and no persisted failures, so that one
 mutant's failing case does not fail the next.
 
@@ -28,7 +28,8 @@ WORK = os.path.join(BASE, 'repository')
 TARGET = os.path.join(BASE, 'target')
 ENTRIES = os.path.join(BASE, 'entries.json')
 RESULTS = os.path.join(BASE, 'results.json')
-EXCLUDE = {'golden', 'contact_sheet', 'readme_examples', 'gallery', 'viewer', 'installers', 'layers'}
+EXCLUDE = {'golden', 'cli::contact_sheet', 'project::readme_examples', 'cli::gallery', 'viewer',
+           'project::installers', 'project::layers'}
 
 def parse(path):
     entries, cur, mode, orig, mut = [], None, None, [], []
@@ -92,13 +93,29 @@ def build():
             bins.append((name, m['executable']))
     if r.returncode != 0:
         print(r.stderr[-5000:], file=sys.stderr); sys.exit(1)
-    return [(n, b) for n, b in bins if n not in EXCLUDE]
+    # The suite is one binary; its modules (shadow::hard, radiosity::solutions, ...)
+    # are run one at a time by their path, as the test binaries once were.
+    groups = []
+    for n, b in bins:
+        if n != 'suite':
+            groups.append((n, b, []))
+            continue
+        listed = subprocess.run([b, '--list', '--format', 'terse'], cwd=WORK, capture_output=True, text=True).stdout
+        paths = [l.rsplit(': ', 1)[0] for l in listed.splitlines() if l.endswith(': test')]
+        by_group = {}
+        for path in paths:
+            parts = path.split('::')
+            by_group.setdefault('::'.join(parts[:2]) if len(parts) > 2 else parts[0], []).append(path)
+        for g, members in sorted(by_group.items()):
+            groups.append((g, b, ['--exact', *members]))
+    excluded = lambda n: n in EXCLUDE or n.split('::')[0] in EXCLUDE
+    return [g for g in groups if not excluded(g[0])]
 
-def run(binary, mutant, timeout=300):
+def run(binary, mutant, timeout=300, filters=()):
     env = dict(os.environ, LUMIERE_MUTANT=str(mutant), RUST_BACKTRACE='0', PROPTEST_CASES='24', PROPTEST_DISABLE_FAILURE_PERSISTENCE='1', PROPTEST_RNG_SEED='7')
     t = time.time()
     try:
-        r = subprocess.run([binary, '--test-threads', '2'], cwd=WORK, env=env, capture_output=True, text=True, timeout=timeout)
+        r = subprocess.run([binary, '--test-threads', '2', *filters], cwd=WORK, env=env, capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
         return 'timeout', [], time.time() - t
     failed = re.findall(r'^test (\S+) \.\.\. FAILED', r.stdout, re.M)
@@ -129,15 +146,15 @@ def main():
     times = {}
     if '0' not in results:
         base = {}
-        for n, b in bins:
-            st, failed, dt = run(b, 0)
+        for n, b, f in bins:
+            st, failed, dt = run(b, 0, filters=f)
             times[n] = dt; base[n] = (st, failed)
             print('baseline', n, st, failed, '%.1fs' % dt, flush=True)
         results['0'] = dict(base=base, times=times)
         json.dump(results, open(results_path, 'w'), indent=1)
     times = results['0']['times']
     bad = [n for n, (st, _) in results['0']['base'].items() if st != 'pass']
-    if bad: print('baseline failures', bad); bins = [(n, b) for n, b in bins if n not in bad]
+    if bad: print('baseline failures', bad); bins = [g for g in bins if g[0] not in bad]
     bins.sort(key=lambda nb: times.get(nb[0], 99))
     only = set(sys.argv[1:])
     for e in entries:
@@ -145,13 +162,13 @@ def main():
         if 'status' in e or key in results or (only and key not in only): continue
         stem = os.path.splitext(os.path.basename(e['file']))[0]
         folder = e['file'].split('/')[1]
-        def prio(nb):
-            n = nb[0]
-            return (0 if stem in n or n in stem else 1, times.get(n, 99))
+        def prio(group):
+            n = group[0]
+            return (0 if stem in n or n.split('::')[-1] in stem else 1 if n.split('::')[0] == folder else 2, times.get(n, 99))
         verdict = dict(file=e['file'], kind=e['kind'], desc=e['desc'], caught_by=None, tests=[], status='survived')
         t0 = time.time()
-        for n, b in sorted(bins, key=prio):
-            st, failed, dt = run(b, e['id'])
+        for n, b, f in sorted(bins, key=prio):
+            st, failed, dt = run(b, e['id'], filters=f)
             if st != 'pass':
                 verdict.update(caught_by=n, tests=failed[:5], status='caught' if st == 'fail' else 'timeout')
                 break

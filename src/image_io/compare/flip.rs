@@ -15,7 +15,7 @@
 //! reference, tone-maps each (ACES), and keeps each pixel's largest LDR-FLIP.
 //!
 //! Arithmetic is single precision in the order of NVIDIA's implementation, so the
-//! two agree to rounding (tests/flip_metric.rs compares them); borders repeat
+//! two agree to rounding (tests/suite/image_io/flip.rs compares them); borders repeat
 //! the edge pixel as theirs do.
 
 use super::super::Image;

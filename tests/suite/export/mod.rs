@@ -1,0 +1,3 @@
+//! The exporters (src/export) against the real peers.
+
+mod peers;

@@ -1,0 +1,3 @@
+//! The geometric core (src/geometry): degenerate input.
+
+mod degenerate;

@@ -1,0 +1,8 @@
+//! The global methods (src/global): Whitted, the two-pass methods, the final
+//! gather, and the whole against Mitsuba 3.
+
+mod final_gather;
+mod mitsuba;
+mod ray_tracing;
+mod reflection_frustum;
+mod two_pass;

@@ -1,0 +1,3 @@
+//! Loading what users write (src/load.rs): fuzzed input.
+
+mod fuzz;

@@ -1,0 +1,3 @@
+//! Participating media (src/media): light volumes.
+
+mod light_volumes;

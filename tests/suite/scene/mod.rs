@@ -1,0 +1,4 @@
+//! Scenes (src/scene): glTF and OBJ, ray queries.
+
+mod gltf;
+mod ray_queries;

@@ -1,0 +1,4 @@
+//! Shading (src/shading): lights and optics against closed forms.
+
+mod lights;
+mod optics;
