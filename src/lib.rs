@@ -32,6 +32,7 @@
 #![warn(missing_docs)]
 
 pub mod catalogue;
+pub mod environment_maps;
 mod error;
 pub mod export;
 #[doc(hidden)]
@@ -45,20 +46,37 @@ use internals::{
     geometry, global, image_io, media, radiosity, raster, render, scene, shading, shadow, texture,
 };
 
+/// The form factors between a scene's polygons, as `lumiere form-factors` prints
+/// them: each polygon one patch, by the hemi-cube, Nusselt's analog or the
+/// analytic point-to-polygon formula.
+pub mod form_factors {
+    pub use crate::radiosity::form_factors::{MatrixPatch, PatchMatrix, polygon_form_factors};
+    pub use crate::settings::FormFactorMethod;
+}
+
+/// Every polygon's lit and shadowed parts under a point light, as Atherton, Weiler
+/// & Greenberg's method attaches them (`lumiere shadow-polygons`).
+pub mod shadow_polygons {
+    pub use crate::shadow::shadow_polygon_areas::{ReceiverShadows, receiver_shadows};
+}
+
 /// The vector types of the scene's fields (`DVec3` positions, `Vec3` colours).
 pub use glam;
 
 pub use error::{Error, FileOp, OverBudget, Result, Unsupported, one_line};
 pub use image_io::{
-    Buffer, BufferData, Candidate, Comparison, Flip, FlipRange, Format as ImageFormat, FuzzyMatch,
-    Image, Moments, MomentsSum, NO_ID, StatisticalTest, ToleranceCheck, apply_mask,
-    compare as compare_images, decode as decode_image, default_pixels_per_degree, difference_image,
-    edge_mask, encode as encode_image, flip, fuzzy_match, load as read_image, remove_unfinished,
-    save as write_image, statistical_test, strip as comparison_strip, tolerance_check,
-    write_atomically,
+    Animation as GifAnimation, Buffer, BufferData, Candidate, Comparison, Flip, FlipRange,
+    Format as ImageFormat, FuzzyMatch, Image, Moments, MomentsSum, NO_ID, StagedDirectory,
+    StatisticalTest, ToleranceCheck, apply_mask, compare as compare_images, decode as decode_image,
+    default_pixels_per_degree, difference_image, dimensions as image_dimensions, edge_mask,
+    encode as encode_image, flip, fuzzy_match, load as read_image, read_file, refuse_non_radiance,
+    remove_unfinished, save as write_image, statistical_test, strip as comparison_strip,
+    tolerance_check, write_atomically,
 };
 pub use load::{load_scene, scene_from_files, scene_from_toml};
 pub use render::{BufferInfo, Frame, Prepasses, Renderer, render};
+/// The largest image side a scene may ask for, in pixels.
+pub use scene::MAX_SIDE as MAX_IMAGE_SIDE;
 pub use scene::{
     Camera, DistantLight, Light, LightKind, Material, Object, PointLight, Polygon, PolygonLight,
     Scene, SphereLight, SpotDistribution, SpotLight, Vertex,

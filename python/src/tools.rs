@@ -5,9 +5,8 @@ use crate::arrays::{array_to_image, image_to_array};
 use crate::errors::IntoPy;
 use crate::scene::Scene;
 use lumiere::export::{Format, Options};
-use lumiere::internals::radiosity::form_factors::patch_factors;
-use lumiere::internals::radiosity::{Division, Estimator, FormFactorMethod, Mesh};
-use lumiere::internals::shadow::shadow_polygon_areas::receiver_shadows;
+use lumiere::form_factors::{FormFactorMethod, polygon_form_factors};
+use lumiere::shadow_polygons::receiver_shadows;
 use lumiere::{FlipRange, Image, Light};
 use numpy::IntoPyArray;
 use numpy::ndarray::Array2;
@@ -140,15 +139,10 @@ pub fn form_factors<'py>(
         )));
     }
     let s = &scene.inner;
-    let (mesh, matrix) = py
-        .detach(|| -> lumiere::Result<_> {
-            let mesh = Mesh::build(s, Division::Whole, Division::Count(elements))?;
-            let estimator = Estimator::new(method, resolution, s);
-            let matrix = patch_factors(&mesh, &estimator.element_to_patch(&mesh));
-            Ok((mesh, matrix))
-        })
+    let matrix = py
+        .detach(|| polygon_form_factors(s, method, resolution, elements))
         .py_err()?;
-    let names = mesh
+    let names = matrix
         .patches
         .iter()
         .map(|p| {
@@ -158,9 +152,9 @@ pub fn form_factors<'py>(
             )
         })
         .collect();
-    let areas: Vec<f64> = mesh.patches.iter().map(|p| p.area).collect();
-    let n = matrix.len();
-    let flat: Vec<f64> = matrix.into_iter().flatten().collect();
+    let areas: Vec<f64> = matrix.patches.iter().map(|p| p.area).collect();
+    let n = matrix.factors.len();
+    let flat: Vec<f64> = matrix.factors.into_iter().flatten().collect();
     Ok((
         names,
         areas.into_pyarray(py).into_any(),

@@ -3,11 +3,11 @@
 
 use super::compare_checks::{Figures, Thresholds, exceeded, print};
 use anyhow::{Context, Result, bail};
-use lumiere::internals::image_io::{
-    Candidate, FlipRange, Image, Moments, apply_mask, default_pixels_per_degree, edge_mask, flip,
-    statistical_test, strip, tolerance_check,
+use lumiere::{
+    Candidate, FlipRange, Image, Moments, apply_mask, compare_images, comparison_strip,
+    default_pixels_per_degree, edge_mask, flip, fuzzy_match, statistical_test, tolerance_check,
+    write_image,
 };
-use lumiere::{compare_images, fuzzy_match, write_image};
 use std::path::{Path, PathBuf};
 
 /// Compare two images (PNG, PFM or EXR), A the reference and B the candidate: RMSE,
@@ -168,11 +168,12 @@ enum FlipRangeArg {
 /// over the budget; then decodes them.
 fn read_within_budget(args: &Args) -> Result<Vec<Image>> {
     use lumiere::FileOp;
-    use lumiere::internals::image_io::{decode, dimensions, read_file};
+    use lumiere::{decode_image, image_dimensions, read_file};
     let read = |path: &Path| -> Result<(Vec<u8>, lumiere::ImageFormat, u64)> {
         let bytes = read_file(path, FileOp::Read)?;
         let format = lumiere::ImageFormat::of(path)?;
-        let (w, h) = dimensions(&bytes, format).with_context(|| path.display().to_string())?;
+        let (w, h) =
+            image_dimensions(&bytes, format).with_context(|| path.display().to_string())?;
         Ok((bytes, format, w as u64 * h as u64))
     };
     let paths: Vec<&Path> = [Some(&args.a), Some(&args.b)]
@@ -227,7 +228,7 @@ fn read_within_budget(args: &Args) -> Result<Vec<Image>> {
     read.into_iter()
         .zip(paths)
         .map(|((bytes, format, _), path)| {
-            decode(&bytes, format).with_context(|| path.display().to_string())
+            decode_image(&bytes, format).with_context(|| path.display().to_string())
         })
         .collect()
 }
@@ -394,7 +395,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     if let Some(path) = &args.diff {
         write_image(
-            &strip(&a, &b, args.exposure, args.gain),
+            &comparison_strip(&a, &b, args.exposure, args.gain),
             path,
             args.exposure,
         )?;

@@ -2,8 +2,7 @@
 //! thresholds, each exceeded one said with its measured value.
 
 use anyhow::Result;
-use lumiere::internals::image_io::{Flip, StatisticalTest, ToleranceCheck};
-use lumiere::{Comparison, FuzzyMatch};
+use lumiere::{Comparison, Flip, FuzzyMatch, StatisticalTest, ToleranceCheck};
 
 /// Every figure a comparison measured.
 pub struct Figures {

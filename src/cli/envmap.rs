@@ -4,12 +4,8 @@
 
 use anyhow::{Context, Result, bail};
 use lumiere::Scene;
-use lumiere::internals::render::capture_cube;
-use lumiere::internals::scene::objects_named;
-use lumiere::internals::texture::Texels;
-use lumiere::internals::texture::environment::{EnvironmentMap, Layout};
-use lumiere::settings::Filter;
-use lumiere::{Image, ImageFormat, load_scene, read_image, write_image};
+use lumiere::environment_maps::{self, Layout};
+use lumiere::{ImageFormat, load_scene, read_image, write_image};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -76,21 +72,15 @@ pub fn run(args: Args) -> Result<()> {
         bail!("--size must be between 1 and {MAX_SIZE}, got {size}");
     }
     let started = Instant::now();
-    let (map, exposure) = match (&args.from, &args.scene) {
+    let (image, exposure) = match (&args.from, &args.scene) {
         (Some(from), _) => {
             let Some(layout) = args.layout else {
                 bail!("--from needs --layout: how {} is laid out", from.display());
             };
             let image = read_image(from)?;
-            lumiere::internals::image_io::refuse_non_radiance(&image)
+            lumiere::refuse_non_radiance(&image).with_context(|| from.display().to_string())?;
+            let map = environment_maps::convert(image, layout, to, args.size)
                 .with_context(|| from.display().to_string())?;
-            let texels = Texels {
-                width: image.width,
-                height: image.height,
-                texels: image.pixels,
-            };
-            let map = EnvironmentMap::from_image(layout, texels, Filter::Trilinear)
-                .map_err(|m| anyhow::anyhow!("{}: {m}", from.display()))?;
             (map, 1.0)
         }
         (None, Some(scene)) => {
@@ -101,23 +91,11 @@ pub fn run(args: Args) -> Result<()> {
             let scene = load_scene(scene, &args.sets)?;
             let hidden = hidden_objects(&scene, &args.hide)?;
             let size = args.size.unwrap_or(256);
-            let map = capture_cube(&scene, at, size, &hidden, Filter::Trilinear)
+            let map = environment_maps::capture(&scene, at, size, &hidden, to)
                 .context("rendering the cube faces")?;
             (map, scene.render.exposure)
         }
         (None, None) => bail!("give a scene to capture, or --from MAP to convert"),
-    };
-    let size = args.size.unwrap_or(map.size());
-    let map = if map.layout() == to && size == map.size() {
-        map
-    } else {
-        map.convert(to, size)
-    };
-    let texels = map.to_texels();
-    let image = Image {
-        width: texels.width,
-        height: texels.height,
-        pixels: texels.texels,
     };
     write_image(&image, &args.output, exposure)?;
     outln!(
@@ -144,7 +122,7 @@ fn parse_point(text: &str) -> Result<glam::DVec3> {
 fn hidden_objects(scene: &Scene, names: &[String]) -> Result<Vec<usize>> {
     let mut hidden = Vec::new();
     for name in names {
-        let found = objects_named(&scene.objects, name);
+        let found = scene.objects_named(name);
         if found.is_empty() {
             let mut known: Vec<&str> = scene.objects.iter().map(|o| o.name.as_str()).collect();
             known.sort();

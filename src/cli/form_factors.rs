@@ -3,8 +3,7 @@
 
 use anyhow::Result;
 use lumiere::Scene;
-use lumiere::internals::radiosity::form_factors::patch_factors;
-use lumiere::internals::radiosity::{Division, Estimator, FormFactorMethod, Mesh};
+use lumiere::form_factors::{FormFactorMethod, MatrixPatch, polygon_form_factors};
 use lumiere::load_scene;
 
 /// Print F_ij for every pair of polygons of a scene (rows: from, columns: to).
@@ -34,15 +33,13 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<()> {
     let scene = load_scene(&args.scene, &args.sets)?;
-    let mesh = Mesh::build(&scene, Division::Whole, Division::Count(args.elements))?;
-    for warning in scene.warnings.iter().chain(&mesh.warnings) {
+    let matrix = polygon_form_factors(&scene, args.method, args.resolution, args.elements)?;
+    for warning in scene.warnings.iter().chain(&matrix.warnings) {
         eprintln!("warning: {warning}");
     }
-    let estimator = Estimator::new(args.method, args.resolution, &scene);
-    let matrix = patch_factors(&mesh, &estimator.element_to_patch(&mesh));
-    let names = patch_names(&scene, &mesh);
+    let names = patch_names(&scene, &matrix.patches);
     if args.json {
-        let patches: Vec<_> = mesh
+        let patches: Vec<_> = matrix
             .patches
             .iter()
             .zip(&names)
@@ -53,7 +50,7 @@ pub fn run(args: Args) -> Result<()> {
             "resolution": args.resolution,
             "elements": args.elements,
             "patches": patches,
-            "factors": matrix,
+            "factors": matrix.factors,
         });
         outln!("{}", serde_json::to_string_pretty(&report)?)?;
     } else {
@@ -62,7 +59,7 @@ pub fn run(args: Args) -> Result<()> {
             out!(" {:>10.10}", name)?;
         }
         outln!()?;
-        for ((row, name), p) in matrix.iter().zip(&names).zip(&mesh.patches) {
+        for ((row, name), p) in matrix.factors.iter().zip(&names).zip(&matrix.patches) {
             out!("{name:<24.24}{:>12.4}", p.area)?;
             for f in row {
                 out!(" {f:>10.6}")?;
@@ -74,8 +71,8 @@ pub fn run(args: Args) -> Result<()> {
 }
 
 /// Each patch's object name, with the polygon's index when its object has several.
-fn patch_names(scene: &Scene, mesh: &Mesh) -> Vec<String> {
-    mesh.patches
+fn patch_names(scene: &Scene, patches: &[MatrixPatch]) -> Vec<String> {
+    patches
         .iter()
         .map(|p| {
             let object = scene.polygons[p.polygon].object;

@@ -143,10 +143,10 @@ pub fn usage_error_line(error: &clap::Error) -> String {
 #[derive(clap::Args, Debug)]
 pub struct ImageSize {
     /// Image width in pixels (overrides camera.width).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=lumiere::internals::scene::MAX_SIDE as i64))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=lumiere::MAX_IMAGE_SIDE as i64))]
     width: Option<u32>,
     /// Image height in pixels (overrides camera.height).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=lumiere::internals::scene::MAX_SIDE as i64))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=lumiere::MAX_IMAGE_SIDE as i64))]
     height: Option<u32>,
 }
 

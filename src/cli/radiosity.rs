@@ -4,9 +4,9 @@
 
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
+use lumiere::Image;
 use lumiere::Renderer;
 use lumiere::Scene;
-use lumiere::internals::image_io::{self, Image};
 use lumiere::internals::radiosity::{self, Settings, Solution};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -28,13 +28,14 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
     // come; both replace an earlier run's only once this run is complete.
     let mut staged = frames
         .map(|f| -> Result<_> {
-            let directory = image_io::StagedDirectory::create(&f.dir).with_context(|| {
+            let directory = lumiere::StagedDirectory::create(&f.dir).with_context(|| {
                 format!("cannot create the frames directory {}", f.dir.display())
             })?;
             let gif = directory.path("convergence.gif");
             let file = std::fs::File::create(&gif)
                 .with_context(|| format!("cannot write {}", gif.display()))?;
-            let animation = image_io::Animation::new(std::io::BufWriter::new(file), exposure, 200);
+            let animation =
+                lumiere::GifAnimation::new(std::io::BufWriter::new(file), exposure, 200);
             Ok((directory, animation))
         })
         .transpose()?;
@@ -70,7 +71,7 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
             };
             let path = directory.path(&format!("step-{:05}.png", state.steps));
             frame_error = draw(scene, snapshot).and_then(|image| {
-                image_io::save(&image, &path, exposure)?;
+                lumiere::write_image(&image, &path, exposure)?;
                 Ok(animation.add(&image)?)
             });
         }

@@ -2,7 +2,7 @@
 
 use anyhow::{Context, Result, bail};
 use lumiere::Renderer;
-use lumiere::internals::image_io::StagedDirectory;
+use lumiere::StagedDirectory;
 use lumiere::settings::{FormFactorMethod, SamplePattern, ShadowMethod, Solver};
 use lumiere::{ImageFormat, catalogue, load_scene, write_atomically, write_image};
 use std::path::PathBuf;
@@ -211,7 +211,7 @@ pub fn run(args: Args) -> Result<()> {
                 );
             }
             if args.output.as_os_str() == "-" {
-                let png = lumiere::internals::image_io::encode(&image, ImageFormat::Png, exposure)?;
+                let png = lumiere::encode_image(&image, ImageFormat::Png, exposure)?;
                 std::io::Write::write_all(&mut std::io::stdout(), &png)
                     .context("writing standard output")?;
                 return Ok(());

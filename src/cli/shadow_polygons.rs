@@ -1,7 +1,7 @@
 //! `lumiere shadow-polygons`: the lit and shadowed polygons of a scene, measured.
 
 use anyhow::{Context, Result, bail};
-use lumiere::internals::shadow::shadow_polygon_areas::{ReceiverShadows, receiver_shadows};
+use lumiere::shadow_polygons::{ReceiverShadows, receiver_shadows};
 use lumiere::{ImageFormat, Light, Scene, load_scene, write_atomically};
 use std::path::PathBuf;
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Transform};

@@ -85,3 +85,52 @@ pub fn patch_factors(mesh: &Mesh, element_rows: &[Vec<f32>]) -> Vec<Vec<f64>> {
         })
         .collect()
 }
+
+/// One patch of a [`PatchMatrix`]: a whole polygon.
+#[derive(Clone, Debug)]
+pub struct MatrixPatch {
+    /// The polygon's index in the scene's polygons.
+    pub polygon: usize,
+    /// Its area, in the scene's units squared.
+    pub area: f64,
+}
+
+/// The form factors between a scene's polygons, each polygon one patch.
+#[derive(Clone, Debug)]
+pub struct PatchMatrix {
+    /// The patches, in the order of the rows and columns.
+    pub patches: Vec<MatrixPatch>,
+    /// F_ij: row i from patch i, column j to patch j.
+    pub factors: Vec<Vec<f64>>,
+    /// What meshing the scene left out, one sentence each.
+    pub warnings: Vec<String>,
+}
+
+/// F_ij between every pair of `scene`'s polygons by `method` at `resolution`: each
+/// source polygon cut into `elements` × `elements` elements, one estimate at each
+/// element's centre, area-averaged into its patch's row (the analytic method
+/// integrates over the receiving patch from those points).
+pub fn polygon_form_factors(
+    scene: &Scene,
+    method: crate::settings::FormFactorMethod,
+    resolution: u32,
+    elements: u32,
+) -> crate::error::Result<PatchMatrix> {
+    use crate::settings::Division;
+    let mesh = Mesh::build(scene, Division::Whole, Division::Count(elements))?;
+    let estimator = Estimator::new(method, resolution, scene);
+    let factors = patch_factors(&mesh, &estimator.element_to_patch(&mesh));
+    let patches = mesh
+        .patches
+        .iter()
+        .map(|p| MatrixPatch {
+            polygon: p.polygon,
+            area: p.area,
+        })
+        .collect();
+    Ok(PatchMatrix {
+        patches,
+        factors,
+        warnings: mesh.warnings,
+    })
+}

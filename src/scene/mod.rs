@@ -324,6 +324,12 @@ pub struct Capture {
 }
 
 impl Scene {
+    /// The indices of the objects a scene file's `name` made: that object, or the
+    /// parts of an OBJ file it loaded (named `name/part`).
+    pub fn objects_named(&self, name: &str) -> Vec<usize> {
+        objects_named(&self.objects, name)
+    }
+
     /// The material polygon `polygon` wears.
     pub fn material_of(&self, polygon: usize) -> &Material {
         &self.materials[self.polygons[polygon].material]

@@ -14,18 +14,26 @@ use glam::DVec3;
 /// holes clockwise.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct ReceiverShadows {
+    /// The polygon's index in the scene's polygons.
     pub polygon: usize,
+    /// The name of its object.
     pub object: String,
     /// Unit normal of the polygon's front.
     pub normal: [f64; 3],
+    /// Its area, lit and shadowed, in the scene's units squared.
     pub area: f64,
+    /// The area of its lit parts.
     pub lit_area: f64,
+    /// The area of its shadowed parts.
     pub shadowed_area: f64,
+    /// The lit parts' contours.
     pub lit: Vec<Vec<[f64; 3]>>,
+    /// The shadowed parts' contours.
     pub shadowed: Vec<Vec<[f64; 3]>>,
 }
 
-/// The lit and shadowed polygons of every scene polygon for a point light.
+/// The lit and shadowed polygons of every scene polygon for a point light at
+/// `light`, by Atherton, Weiler & Greenberg's shadow polygons.
 pub fn receiver_shadows(scene: &Scene, light: DVec3) -> Vec<ReceiverShadows> {
     let lit = lit_polygons(scene, light);
     scene

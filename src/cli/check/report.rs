@@ -6,7 +6,7 @@
 use super::super::references::manifest::EntryRecord;
 use super::Verdict;
 use anyhow::Result;
-use lumiere::internals::image_io::StagedDirectory;
+use lumiere::StagedDirectory;
 use lumiere::{comparison_strip, read_image, write_image};
 use std::fmt::Write as _;
 use std::path::Path;

@@ -6,7 +6,6 @@
 use super::topics::Page;
 use anyhow::{Context, Result};
 use lumiere::Renderer;
-use lumiere::internals::image_io;
 use lumiere::internals::radiosity::{self, Solution, Solver};
 use lumiere::settings::ShadowMethod;
 use lumiere::{catalogue, load_scene};
@@ -147,7 +146,7 @@ pub fn render(
     }
     let image = renderer.render()?;
     let seconds = start.elapsed().as_secs_f64();
-    image_io::save(&image, &dir.join("image.png"), exposure)?;
+    lumiere::write_image(&image, &dir.join("image.png"), exposure)?;
     let file = |name: &str| format!("{rel}/{name}");
 
     // The buffers this page shows, with what each holds.
@@ -162,7 +161,7 @@ pub fn render(
     if !names.is_empty() {
         for buffer in renderer.render_with_buffers(&names)?.buffers {
             let name = format!("buffer-{}.png", buffer.name);
-            image_io::save(
+            lumiere::write_image(
                 &lumiere::viewer::buffer_picture(&buffer, exposure).0,
                 &dir.join(&name),
                 1.0,
@@ -186,7 +185,7 @@ pub fn render(
         let path = dir.join("progress.gif");
         let out = std::fs::File::create(&path)
             .with_context(|| format!("cannot write {}", path.display()))?;
-        let mut gif = image_io::Animation::new(std::io::BufWriter::new(out), exposure, 600);
+        let mut gif = lumiere::GifAnimation::new(std::io::BufWriter::new(out), exposure, 600);
         for snapshot in snapshots {
             let mut frame = Renderer::new(renderer.scene().clone());
             frame.set_radiosity_solution(Arc::new(snapshot));
@@ -201,7 +200,7 @@ pub fn render(
         super::super::shadow_polygons::plan_of(renderer.scene())
             .ok()
             .map(|bytes| -> Result<String> {
-                image_io::write_atomically(&dir.join("plan.png"), &bytes)?;
+                lumiere::write_atomically(&dir.join("plan.png"), &bytes)?;
                 Ok(file("plan.png"))
             })
             .transpose()?
@@ -212,15 +211,12 @@ pub fn render(
     let agreement = match reference {
         None => None,
         Some(reference) => {
-            let theirs = image_io::load(reference)?;
-            let ours = image_io::load_png_bytes(&image_io::encode(
-                &image,
-                image_io::Format::Png,
-                exposure,
-            )?)?;
-            let c = image_io::compare(&theirs, &ours, 1.0)?;
-            let difference = image_io::difference_image(&theirs, &ours, 1.0, DIFFERENCE_GAIN);
-            image_io::save(&difference, &dir.join("difference.png"), 1.0)?;
+            let theirs = lumiere::read_image(reference)?;
+            let png = lumiere::encode_image(&image, lumiere::ImageFormat::Png, exposure)?;
+            let ours = lumiere::decode_image(&png, lumiere::ImageFormat::Png)?;
+            let c = lumiere::compare_images(&theirs, &ours, 1.0)?;
+            let difference = lumiere::difference_image(&theirs, &ours, 1.0, DIFFERENCE_GAIN);
+            lumiere::write_image(&difference, &dir.join("difference.png"), 1.0)?;
             Some(Agreement {
                 rmse: c.rmse,
                 differing_share: c.differing_share,

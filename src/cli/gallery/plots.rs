@@ -5,13 +5,12 @@
 use super::svg::{BarChart, LinePlot, Scale, Series};
 use super::topics::Plot;
 use anyhow::{Context, Result};
+use lumiere::Image;
 use lumiere::Renderer;
-use lumiere::internals::image_io::{self, Image};
+use lumiere::form_factors::{FormFactorMethod, polygon_form_factors};
 use lumiere::internals::radiosity::form_factors::patch_factors;
 use lumiere::internals::radiosity::gathering::gauss_seidel_observed;
-use lumiere::internals::radiosity::{self, Division, Estimator, FormFactorMethod, Mesh, Solver};
-use lumiere::internals::scene;
-use lumiere::internals::scene::resources::InMemory;
+use lumiere::internals::radiosity::{self, Estimator, Solver};
 use lumiere::{catalogue, load_scene};
 use std::sync::Arc;
 
@@ -63,7 +62,7 @@ fn render(scene: &str, sets: &[String]) -> Result<(Image, f32)> {
 }
 
 fn rmse(a: &(Image, f32), b: &(Image, f32)) -> Result<f64> {
-    Ok(image_io::compare(&a.0, &b.0, a.1)?.rmse)
+    Ok(lumiere::compare_images(&a.0, &b.0, a.1)?.rmse)
 }
 
 /// `sets` and the entry's test size.
@@ -142,7 +141,7 @@ fn visibility(scene: &str, sets: &[String]) -> Result<Vec<f32>> {
     renderer.check()?;
     let rendered = renderer.render_with_buffers(&["visibility-0".into()])?;
     match &rendered.buffers[0].data {
-        image_io::BufferData::Values { data, .. } => Ok(data.clone()),
+        lumiere::BufferData::Values { data, .. } => Ok(data.clone()),
         _ => anyhow::bail!("visibility-0 is not a buffer of values"),
     }
 }
@@ -275,14 +274,13 @@ vertices = [[0.5, 0.0, -0.5], [0.5, 0.0, 0.5], [0.5, 1.0, 0.5], [0.5, 1.0, -0.5]
 "#;
 
 fn form_factor_error() -> Result<Drawn> {
-    let table = scene::tables::parse(PLATES, "the plates")?;
-    let scene = scene::scene_from_table(table, &InMemory(Default::default()))?;
-    let mesh = Mesh::build(&scene, Division::Whole, Division::Count(1))?;
-    let row = |method, resolution| -> Vec<f64> {
-        let rows = Estimator::new(method, resolution, &scene).element_to_patch(&mesh);
-        rows[0].iter().map(|&f| f as f64).collect()
+    let scene = lumiere::scene_from_toml(PLATES, &[]).context("the plates")?;
+    // From the first plate's centre: one element a patch.
+    let row = |method, resolution| -> Result<Vec<f64>> {
+        let mut matrix = polygon_form_factors(&scene, method, resolution, 1)?;
+        Ok(matrix.factors.swap_remove(0))
     };
-    let exact = row(FormFactorMethod::Analytic, 0);
+    let exact = row(FormFactorMethod::Analytic, 0)?;
     anyhow::ensure!(
         exact[1] > 0.0 && exact[2] > 0.0,
         "the plates do not see each other"
@@ -300,8 +298,8 @@ fn form_factor_error() -> Result<Drawn> {
     ] {
         let points = resolutions
             .iter()
-            .map(|&r| (r as f64, error(&row(method, r))))
-            .collect();
+            .map(|&r| Ok((r as f64, error(&row(method, r)?))))
+            .collect::<Result<_>>()?;
         series.push(Series {
             name: name.into(),
             points,

@@ -7,8 +7,8 @@
 use super::manifest::{Check, EntryRecord, Export, Files, Settings};
 use anyhow::{Context, Result};
 use clap::ValueEnum;
+use lumiere::StagedDirectory;
 use lumiere::export::{self, Format, Options};
-use lumiere::internals::image_io::StagedDirectory;
 use lumiere::{BufferData, Image, ImageFormat, MomentsSum, Renderer, catalogue, load_scene};
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -5,7 +5,7 @@
 use super::manifest::Manifest;
 use super::{read_manifest, write_manifest};
 use anyhow::{Context, Result, bail};
-use lumiere::internals::image_io::StagedDirectory;
+use lumiere::StagedDirectory;
 use std::path::{Path, PathBuf};
 
 pub fn run(parts: &[PathBuf], output: &Path) -> Result<()> {

@@ -2,7 +2,7 @@
 //! (image input and output) → texture → scene → raster → shadow, shading,
 //! radiosity, media (siblings) → global (ray tracing and the two-pass method's
 //! second pass, over shading's light model and radiosity's solution) → render →
-//! catalogue and export → the loader → the viewer's engine → the command line, the
+//! catalogue, export and environment maps → the loader → the viewer's engine → the command line, the
 //! crate root and its internals. A module names only modules
 //! below its own layer (and its own): read from the sources, every `crate::` path
 //! checked. Inside a folder, the files import one another without a circle.
@@ -20,7 +20,7 @@ fn layer(module: &str) -> Option<u32> {
         "shadow" | "shading" | "radiosity" | "media" => 6,
         "global" => 7,
         "render" => 8,
-        "catalogue" | "export" => 9,
+        "catalogue" | "export" | "environment_maps" => 9,
         "load" => 10,
         "viewer" => 11,
         "cli" | "main" | "lib" | "internals" => 12,
