@@ -297,6 +297,9 @@ impl fmt::Display for FileOp {
 
 impl Error {
     /// The error inside the `InScene` and `In` wrappers.
+    // Errors pass through unchanged: `Error` is no method or kind a new variant of
+    // which would need placing.
+    #[allow(clippy::wildcard_enum_match_arm)]
     pub fn root(&self) -> &Error {
         match self {
             Error::InScene { source, .. } | Error::In { source, .. } => source.root(),
@@ -335,6 +338,7 @@ impl Error {
     }
 
     /// An image error without a path given `path`; any other error is unchanged.
+    #[allow(clippy::wildcard_enum_match_arm)]
     pub(crate) fn at_path(self, path: &Path) -> Error {
         match self {
             Error::Image {

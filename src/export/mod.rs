@@ -263,7 +263,11 @@ pub fn left_out(scene: &Scene, format: Format) -> Vec<String> {
                 "{}: an emissive mesh (KHR_materials_emissive_strength), not a punctual light: a glTF viewer may not light the scene with it",
                 light.label(index)
             )),
-            _ => {}
+            Light::Point(_)
+            | Light::Distant(_)
+            | Light::Polygon(_)
+            | Light::Sphere(_)
+            | Light::Spot(_) => {}
         }
     }
     if scene.medium.is_some() {

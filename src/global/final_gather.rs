@@ -395,7 +395,7 @@ impl FinalGather {
             };
             let emitter = match light {
                 Light::Polygon(l) => Some(l.polygon as u32),
-                _ => None,
+                Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_) => None,
             };
             if !self
                 .traced

@@ -121,7 +121,7 @@ fn extended_clear(
 ) -> f32 {
     let emitter = match light {
         Light::Polygon(l) => Some(l.polygon as u32),
-        _ => None,
+        Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_) => None,
     };
     let (mut total, mut clear) = (0.0, 0.0);
     for u in stream.jittered(scene.shadows.light_samples as usize) {

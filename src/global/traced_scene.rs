@@ -109,7 +109,7 @@ impl TracedScene {
     ) -> Option<SurfaceHit> {
         let skip = match leaving {
             Leaving::Polygon(p) => self.local(p),
-            _ => None,
+            Leaving::Eye | Leaving::Sphere(_) => None,
         };
         let skip: &[u32] = match &skip {
             Some(p) => std::slice::from_ref(p),

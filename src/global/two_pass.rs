@@ -72,7 +72,7 @@ pub fn check(scene: &Scene, method: GlobalMethod) -> Result<()> {
                     ),
                 ));
             }
-            _ => {}
+            GlobalMethod::RayTracing | GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance => {}
         }
     }
     Ok(())

@@ -245,7 +245,7 @@ fn inscattered(
             match light {
                 Light::Point(l) => l.intensity,
                 Light::Spot(l) => l.intensity,
-                _ => unreachable!(),
+                Light::Distant(_) | Light::Polygon(_) | Light::Sphere(_) => unreachable!(),
             }
         }
         Light::Polygon(_) | Light::Sphere(_) => return Vec3::ZERO,
@@ -272,7 +272,7 @@ pub fn point_integrand(
     let travel = -to_light / r;
     let spot = match light {
         Light::Spot(l) => l.factor_towards(x),
-        _ => 1.0,
+        Light::Point(_) | Light::Distant(_) | Light::Polygon(_) | Light::Sphere(_) => 1.0,
     };
     let towards_light = medium_length(medium, x, to_light / r, r);
     let along_ray = medium_length(medium, eye, direction, t);

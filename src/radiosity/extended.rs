@@ -102,7 +102,7 @@ pub fn element_terms(
     let hemicube = match estimator {
         Estimator::Hemicube(h) => Some(h),
         _ if windows.is_empty() => None,
-        _ => {
+        Estimator::Nusselt(_) | Estimator::Analytic(_) => {
             return Err(Error::Radiosity(
                 "mirrors and panes are followed through the hemi-cube (virtual environments): use radiosity.form_factors = \"hemicube\"".into(),
             ));

@@ -104,7 +104,14 @@ impl Kind {
     fn channels(self) -> usize {
         match self {
             Kind::Position | Kind::Normal | Kind::Uv | Kind::Radiosity | Kind::Inscattered => 3,
-            _ => 1,
+            Kind::Polygon
+            | Kind::Element
+            | Kind::Depth
+            | Kind::Visibility(_)
+            | Kind::Counts(..)
+            | Kind::MipLevel
+            | Kind::EnvironmentLevel
+            | Kind::LitIntervals(_) => 1,
         }
     }
 }
@@ -299,7 +306,15 @@ impl FrameBuffers {
                 let data = match kind {
                     Kind::Polygon | Kind::Element => BufferData::Ids(Vec::new()),
                     Kind::Counts(..) | Kind::LitIntervals(_) => BufferData::Counts(Vec::new()),
-                    _ => BufferData::Values {
+                    Kind::Depth
+                    | Kind::Position
+                    | Kind::Normal
+                    | Kind::Uv
+                    | Kind::Visibility(_)
+                    | Kind::MipLevel
+                    | Kind::EnvironmentLevel
+                    | Kind::Radiosity
+                    | Kind::Inscattered => BufferData::Values {
                         channels: kind.channels(),
                         data: Vec::new(),
                     },
@@ -382,9 +397,16 @@ impl FrameBuffers {
                                 Integrator::Radiosity(solution, ..) if !empty => {
                                     solution.elements[s.element as usize].to_array()
                                 }
-                                _ => [0.0; 3],
+                                Integrator::Direct
+                                | Integrator::Radiosity(..)
+                                | Integrator::Whitted(..) => [0.0; 3],
                             }),
-                            _ => unreachable!("ids and counts are matched above"),
+                            Kind::Polygon
+                            | Kind::Element
+                            | Kind::Counts(..)
+                            | Kind::LitIntervals(_) => {
+                                unreachable!("ids and counts are matched above")
+                            }
                         }
                     }
                 }

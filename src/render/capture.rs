@@ -33,7 +33,9 @@ pub fn without_objects(scene: &Scene, hidden: &[usize]) -> Scene {
                 l.polygon = polygon;
                 Light::Polygon(l)
             }),
-            other => Some(other.clone()),
+            other @ (Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_)) => {
+                Some(other.clone())
+            }
         })
         .collect();
     Scene {

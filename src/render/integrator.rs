@@ -63,7 +63,7 @@ impl Integrator {
     pub fn direct_lights(&self, scene: &Scene) -> Vec<bool> {
         match self {
             Integrator::Whitted(..) => vec![false; scene.lights.len()],
-            _ => lit_directly(
+            Integrator::Direct | Integrator::Radiosity(..) => lit_directly(
                 scene,
                 matches!(self, Integrator::Radiosity(..)) && !exact_direct(scene),
             ),

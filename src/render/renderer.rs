@@ -322,7 +322,9 @@ impl Renderer {
                 }
                 render_rotated_grid(&self.scene, &plan)
             }
-            _ => render_frame(&self.scene, &plan, buffers),
+            Integrator::Direct | Integrator::Radiosity(..) => {
+                render_frame(&self.scene, &plan, buffers)
+            }
         }
     }
 

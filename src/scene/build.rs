@@ -318,7 +318,9 @@ impl Builder {
         };
         let (key, value) = match o.shape {
             ShapeKind::Sphere | ShapeKind::Cylinder => ("resolution", resolution.to_string()),
-            _ => ("shape", format!("{:?}", o.shape).to_lowercase()),
+            ShapeKind::Obj | ShapeKind::Polygon | ShapeKind::Quad | ShapeKind::Box => {
+                ("shape", format!("{:?}", o.shape).to_lowercase())
+            }
         };
         self.check_geometry(&faces, key, &value)?;
         check_extent(&m, &faces)?;
@@ -332,7 +334,7 @@ impl Builder {
         let own_mapping = match o.shape {
             ShapeKind::Sphere => Some(shapes::sphere_mapping()),
             ShapeKind::Cylinder => Some(shapes::cylinder_mapping()),
-            _ => None,
+            ShapeKind::Obj | ShapeKind::Polygon | ShapeKind::Quad | ShapeKind::Box => None,
         };
         let frame = object_frame(&m, &faces, own_mapping);
         let object = self.push_object(name, o, frame);
@@ -518,7 +520,10 @@ impl Builder {
                 self.add_polygon_light(index, name, vertices, *radiance)?;
                 Ok(None)
             }
-            other => light_settings::light(other, self.eye).map(Some),
+            other @ (LightFile::Point { .. }
+            | LightFile::Distant { .. }
+            | LightFile::Sphere { .. }
+            | LightFile::Spot { .. }) => light_settings::light(other, self.eye).map(Some),
         }
     }
 

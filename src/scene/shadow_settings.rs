@@ -36,7 +36,7 @@ pub fn from_file(s: &ShadowsFile) -> Result<Settings> {
     if let Some(filter @ (MapFilter::None | MapFilter::PercentageCloser)) = s.map_filter {
         let name = match filter {
             MapFilter::None => "none",
-            _ => "percentage-closer",
+            MapFilter::Box | MapFilter::PercentageCloser => "percentage-closer",
         };
         ensure_valid!(
             s.pcf == 1,

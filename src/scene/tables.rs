@@ -148,7 +148,11 @@ impl<'a> From<&'a mut Value> for Slot<'a> {
         match v {
             Value::Table(t) => Slot::Table(t),
             Value::Array(a) => Slot::Array(a),
-            _ => Slot::Leaf,
+            Value::String(_)
+            | Value::Integer(_)
+            | Value::Float(_)
+            | Value::Boolean(_)
+            | Value::Datetime(_) => Slot::Leaf,
         }
     }
 }

@@ -159,7 +159,7 @@ impl RayCastFrame<'_> {
         }
         let emitter = match &cast.light {
             Light::Polygon(l) => l.polygon as u32,
-            _ => NO_POLYGON,
+            Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_) => NO_POLYGON,
         };
         let (mut total, mut clear) = (0.0, 0.0);
         for u in stream.jittered(cast.samples as usize) {

@@ -130,7 +130,9 @@ impl Source {
     pub fn of(light: &Light) -> Source {
         match light {
             Light::Distant(sun) => Source::Distant(sun.direction),
-            _ => Source::Point(light.position().expect("checked")),
+            Light::Point(_) | Light::Polygon(_) | Light::Sphere(_) | Light::Spot(_) => {
+                Source::Point(light.position().expect("checked"))
+            }
         }
     }
 

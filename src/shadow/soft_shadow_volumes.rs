@@ -88,13 +88,15 @@ impl SoftShadowVolumes {
     pub fn at_points(scene: &Scene, light: &Light, points: &[DVec3]) -> SoftShadowVolumes {
         let emitter = match light {
             Light::Polygon(l) => Some(l.normal),
-            _ => None,
+            Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_) => None,
         };
         // A point of a polygon light lies on the light's own polygon, which casts no
         // volume from it.
         let volumes = |p: DVec3| match light {
             Light::Polygon(l) => ShadowVolumes::on_emitter(scene, p, l.polygon),
-            _ => ShadowVolumes::new(scene, p),
+            Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_) => {
+                ShadowVolumes::new(scene, p)
+            }
         };
         SoftShadowVolumes {
             points: points.par_iter().map(|&p| volumes(p)).collect(),

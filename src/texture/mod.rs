@@ -116,7 +116,9 @@ impl Texture {
             (Filter::MipNearest, Some(p), _) => p.nearest_level(uv, p.level(derivatives), wrap),
             (Filter::Trilinear, Some(p), _) => p.trilinear(uv, p.level(derivatives), wrap),
             (Filter::SummedArea, _, Some(s)) => s.filter(uv, derivatives, wrap),
-            _ => unreachable!("Texture::new builds what the filter needs"),
+            (Filter::MipNearest | Filter::Trilinear, None, _) | (Filter::SummedArea, _, None) => {
+                unreachable!("Texture::new builds what the filter needs")
+            }
         }
     }
 

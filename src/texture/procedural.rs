@@ -59,7 +59,7 @@ impl Procedural {
     pub fn height(&self, uv: DVec2) -> (f64, DVec2) {
         match self {
             Procedural::Noise { cells, seed, .. } => value_noise(uv, *cells, *seed),
-            other => {
+            other @ (Procedural::Checkerboard { .. } | Procedural::Grid { .. }) => {
                 let c = other.color(uv);
                 (luminance(c), DVec2::ZERO)
             }

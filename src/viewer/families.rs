@@ -264,7 +264,7 @@ fn environment(scene: &Scene) -> Option<(Family, usize)> {
         .iter()
         .map(|e| match &e.source {
             EnvironmentSource::Map(map) if e.procedural => Some((e.name.clone(), map.layout())),
-            _ => None,
+            EnvironmentSource::Map(_) | EnvironmentSource::Capture(_) => None,
         })
         .collect::<Option<_>>()?;
     let current = maps.first()?.1;

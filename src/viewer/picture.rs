@@ -108,7 +108,7 @@ pub fn buffer_picture(buffer: &Buffer, exposure: f32) -> (Image, String) {
 fn buffer_channels(buffer: &Buffer) -> usize {
     match buffer.data {
         BufferData::Values { channels, .. } => channels,
-        _ => 1,
+        BufferData::Ids(_) | BufferData::Counts(_) => 1,
     }
 }
 

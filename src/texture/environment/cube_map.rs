@@ -266,7 +266,7 @@ impl CubeMap {
                     self.trilinear_on_face(face, uv, lambda)
                 }
             }
-            _ => self.base.bilinear(face, uv),
+            Filter::Bilinear | Filter::SummedArea => self.base.bilinear(face, uv),
         }
     }
 

@@ -132,7 +132,7 @@ impl EnvironmentMap {
                 "a sphere map must be square, got {}x{}",
                 texels.width, texels.height
             )),
-            _ => Ok(EnvironmentMap::flat(layout, texels, filter)),
+            Layout::LatLong | Layout::Sphere => Ok(EnvironmentMap::flat(layout, texels, filter)),
         }
     }
 
@@ -223,7 +223,10 @@ impl EnvironmentMap {
                             p.levels[k].bilinear_wrapped(uv, wrap)
                         }
                     }
-                    _ => texels.bilinear_wrapped(uv, wrap),
+                    (Filter::Bilinear | Filter::SummedArea, _)
+                    | (Filter::MipNearest | Filter::Trilinear, None) => {
+                        texels.bilinear_wrapped(uv, wrap)
+                    }
                 }
             }
         }
@@ -311,7 +314,7 @@ fn flat_uv(layout: Layout, d: DVec3) -> DVec2 {
 fn flat_uv_step(layout: Layout, d: DVec3, offset: DVec3) -> DVec2 {
     match layout {
         Layout::LatLong => lat_long::uv_step(d, offset),
-        _ => sphere_map::uv_step(d, offset),
+        Layout::Sphere | Layout::Cube => sphere_map::uv_step(d, offset),
     }
 }
 
@@ -319,6 +322,6 @@ fn flat_uv_step(layout: Layout, d: DVec3, offset: DVec3) -> DVec2 {
 fn flat_wrap(layout: Layout) -> [Wrap; 2] {
     match layout {
         Layout::LatLong => [Wrap::Repeat, Wrap::Clamp],
-        _ => [Wrap::Clamp, Wrap::Clamp],
+        Layout::Sphere | Layout::Cube => [Wrap::Clamp, Wrap::Clamp],
     }
 }
