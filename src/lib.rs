@@ -42,8 +42,10 @@ pub mod export;
 #[doc(hidden)]
 pub mod internals;
 mod load;
+pub mod radiosity_solution;
 pub mod settings;
 pub mod viewer;
+pub mod visible_surface_pass;
 
 // The crate's own paths (`crate::shadow::…`) name the modules behind the API.
 use internals::{

@@ -2,8 +2,8 @@
 
 use super::timing::median;
 use anyhow::Result;
-use lumiere::internals::{raster, render};
-use lumiere::load_scene;
+use lumiere::visible_surface_pass::VisibleSurfacePass;
+use lumiere::{load_scene, render};
 use lumiere::settings::{Filter, ShadowMethod};
 
 /// Time whole renders (median of several runs) per scene, variant (shadow method or
@@ -76,13 +76,13 @@ pub fn run(args: Args) -> Result<()> {
                 sets.extend(args.sets.iter().cloned());
                 let scene = load_scene(scene_name, &sets)?;
                 // A method that refuses one of the scene's lights has nothing to time.
-                if let Err(lumiere::Error::Unsupported(refusal)) = render::render(&scene) {
+                if let Err(lumiere::Error::Unsupported(refusal)) = render(&scene) {
                     outln!("{scene_name:<26} {label:<22} refused: {refusal}")?;
                     break;
                 }
-                render::render(&scene)?;
+                render(&scene)?;
                 let full = median(args.runs, || {
-                    let _ = std::hint::black_box(render::render(&scene));
+                    let _ = std::hint::black_box(render(&scene));
                 });
                 let grid = (size as f64 * samples as f64).powi(2);
                 let sweep = sweep_rate(&scene, args.runs);
@@ -143,26 +143,7 @@ fn variants(args: &Args, scene_name: &str) -> Result<Vec<(String, Vec<String>)>>
 /// Million samples per second of the visible-surface pass alone, swept in the
 /// frame's bands into one reused buffer as a frame does (polygons prepared once).
 fn sweep_rate(scene: &lumiere::Scene, runs: usize) -> f64 {
-    let view = raster::sample_view(scene);
-    let polygons = raster::screen_polygons(scene, &view);
-    let table = raster::EdgeTable::build(&polygons, view.height);
-    let gradients = raster::uv_gradients(&polygons);
-    let band = render::band_rows(scene) * scene.render.supersample;
-    let mut memory = Vec::new();
-    let sweep = median(runs, || {
-        for first in (0..view.height).step_by(band as usize) {
-            let rows = first..(first + band).min(view.height);
-            let gradients = gradients.clone();
-            let swept = raster::rasterize_rows(
-                &polygons,
-                &table,
-                view.width,
-                rows,
-                gradients,
-                std::mem::take(&mut memory),
-            );
-            memory = std::hint::black_box(swept).samples;
-        }
-    });
-    (view.width as f64 * view.height as f64) / sweep.as_secs_f64() / 1e6
+    let mut pass = VisibleSurfacePass::prepare(scene);
+    let sweep = median(runs, || pass.sweep());
+    pass.samples() as f64 / sweep.as_secs_f64() / 1e6
 }

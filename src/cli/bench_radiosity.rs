@@ -4,9 +4,9 @@
 use super::timing::median;
 use anyhow::{Result, bail};
 use lumiere::Scene;
-use lumiere::internals::radiosity::gathering::gather;
-use lumiere::internals::radiosity::{Division, Estimator, Shooting, Stop, mesh};
 use lumiere::load_scene;
+use lumiere::radiosity_solution::SolverTrial;
+use lumiere::settings::Division;
 
 /// Times, for each wanted element count, shooting to the scene's unshot fraction and
 /// gathering (its form factors and its solve apart).
@@ -28,33 +28,20 @@ pub fn run(scene_name: &str, counts: &[usize], runs: usize) -> Result<()> {
     for &count in counts {
         let scene = with_element_count(&base, count)?;
         let settings = scene.radiosity.as_ref().expect("checked above");
-        let mesh = mesh(&scene, settings)?;
-        let estimator = Estimator::new(settings.form_factors, settings.resolution, &scene);
-        let stop = Stop {
-            unshot: settings.unshot,
-            max_steps: settings.max_steps,
-        };
+        let trial = SolverTrial::prepare(&scene, settings)?;
+        let (patches, elements) = trial.size();
         let mut steps = 0;
-        let shooting = median(runs, || {
-            let mut state = Shooting::start(&mesh);
-            state.run(&mesh, &estimator, stop, &mut |_| {});
-            steps = state.steps;
-        });
-        let g = gather(
-            &mesh,
-            &estimator,
-            settings.tolerance,
-            settings.memory_budget,
-        )?;
+        let shooting = median(runs, || steps = trial.shoot());
+        let (form_factor_time, solve_time) = trial.gather()?;
         outln!(
             "{:<22} {:>9} {:>8} {:>6} {:>13.2} {:>17.2} {:>12.4}",
             scene_name,
-            mesh.elements.len(),
-            mesh.patches.len(),
+            elements,
+            patches,
             steps,
             shooting.as_secs_f64(),
-            g.form_factor_time.as_secs_f64(),
-            g.solve_time.as_secs_f64()
+            form_factor_time.as_secs_f64(),
+            solve_time.as_secs_f64()
         )?;
     }
     Ok(())
@@ -67,9 +54,9 @@ fn with_element_count(base: &Scene, count: usize) -> Result<Scene> {
     let mut count_at = |size: f64| -> Result<(usize, Scene)> {
         let settings = scene.radiosity.as_mut().expect("checked by the caller");
         settings.elements = Division::Size(size);
-        let n = mesh(&scene, scene.radiosity.as_ref().expect("set"))?
-            .elements
-            .len();
+        let n = SolverTrial::prepare(&scene, scene.radiosity.as_ref().expect("set"))?
+            .size()
+            .1;
         Ok((n, scene.clone()))
     };
     let (mut small, mut large) = (1.0_f64, 1000.0_f64);

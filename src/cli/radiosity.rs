@@ -7,7 +7,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 use lumiere::Image;
 use lumiere::Renderer;
 use lumiere::Scene;
-use lumiere::internals::radiosity::{self, Settings, Solution};
+use lumiere::radiosity_solution::{self, Solution};
+use lumiere::settings::RadiositySettings;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -20,7 +21,11 @@ pub struct Frames {
 /// Solves `scene`'s radiosity, showing progress and writing the intermediate frames
 /// asked for; the solution is handed to the renderer, which draws it like any
 /// frame.
-pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frames>) -> Result<()> {
+pub fn solve(
+    renderer: &mut Renderer,
+    settings: &RadiositySettings,
+    frames: Option<&Frames>,
+) -> Result<()> {
     let scene = renderer.scene().clone();
     let scene = &scene;
     let exposure = scene.render.exposure;
@@ -48,28 +53,21 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
     bar.enable_steady_tick(std::time::Duration::from_millis(100));
     let mut frame_error = Ok(());
     let target = settings.unshot.max(1e-12);
-    let solution = radiosity::solve(scene, settings, &mut |mesh, state| {
-        let fraction = state.unshot_fraction(mesh).max(target);
+    let solution = radiosity_solution::solve(scene, settings, &mut |step| {
+        let fraction = step.unshot_fraction().max(target);
         // Progress on a log scale: from all power unshot to the target fraction.
         bar.set_position((1000.0 * fraction.ln() / target.ln()).clamp(0.0, 1000.0) as u64);
         bar.set_message(format!(
             "step {}, {:.2}% unshot",
-            state.steps,
+            step.steps(),
             100.0 * fraction
         ));
         if let (Some(f), Some((directory, animation))) = (frames, staged.as_mut())
-            && state.steps % f.every.max(1) == 0
+            && step.steps() % f.every.max(1) == 0
             && frame_error.is_ok()
         {
-            let shown = state.displayed(mesh, settings.ambient);
-            let snapshot = Solution {
-                mesh: mesh.clone(),
-                elements: shown,
-                direct: None,
-                display: settings.display,
-                summary: String::new(),
-            };
-            let path = directory.path(&format!("step-{:05}.png", state.steps));
+            let snapshot = step.snapshot(String::new());
+            let path = directory.path(&format!("step-{:05}.png", step.steps()));
             frame_error = draw(scene, snapshot).and_then(|image| {
                 lumiere::write_image(&image, &path, exposure)?;
                 Ok(animation.add(&image)?)
@@ -78,7 +76,7 @@ pub fn solve(renderer: &mut Renderer, settings: &Settings, frames: Option<&Frame
     })?;
     frame_error?;
     bar.finish_and_clear();
-    for warning in &solution.mesh.warnings {
+    for warning in solution.warnings() {
         eprintln!("warning: {warning}");
     }
     eprintln!("{}", solution.summary);

@@ -152,10 +152,7 @@ pub fn run(args: Args) -> Result<()> {
         eprintln!("warning: {}", super::one_line(&warning));
     }
     let scene = renderer.scene();
-    if !scene.polygons.is_empty() && {
-        let view = lumiere::internals::raster::sample_view(scene);
-        lumiere::internals::raster::screen_polygons(scene, &view).is_empty()
-    } {
+    if !scene.polygons.is_empty() && !renderer.sees_a_polygon() {
         eprintln!(
             "warning: no polygon lies in front of the camera within its field of view (and beyond camera.near = {}): the image shows the background only",
             scene.camera.near
@@ -337,15 +334,14 @@ fn refuse_missing_element(
     if args.hemicube_element == 0 {
         return Ok(());
     }
-    let mesh =
-        lumiere::internals::radiosity::Mesh::count(scene, settings.patches, settings.elements);
+    let elements = lumiere::radiosity_solution::element_count(scene, settings);
     let levels = settings.subdivision.map_or(0, |s| s.levels);
-    let most = mesh.elements.saturating_mul(4u64.saturating_pow(levels));
+    let most = elements.saturating_mul(4u64.saturating_pow(levels));
     if args.hemicube_element as u64 >= most {
         bail!(
             "--hemicube-element {}: the mesh has {} elements{}, numbered from 0",
             args.hemicube_element,
-            mesh.elements,
+            elements,
             if levels > 0 {
                 format!(" (at most {most} after {levels} rounds of subdivision)")
             } else {

@@ -33,7 +33,9 @@ pub use shooting::{Shooting, Stop};
 
 /// A solved scene: its mesh and the radiosity to display for every element.
 pub struct Solution {
+    /// The patches and elements the scene was cut into.
     pub mesh: Mesh,
+    /// Each element's radiosity as drawn (the ambient term added where asked).
     pub elements: Vec<Vec3>,
     /// The part of each element's radiosity that came straight from the emitters
     /// (ρ_e Σ_j F_ej E_j), for a second pass that computes direct light itself;
@@ -104,6 +106,11 @@ pub fn mesh(scene: &Scene, settings: &Settings) -> Result<Mesh> {
 }
 
 impl Solution {
+    /// What meshing the scene left out, one sentence each.
+    pub fn warnings(&self) -> &[String] {
+        &self.mesh.warnings
+    }
+
     /// The solution without its direct part: what each element received after
     /// more than one bounce (its emission kept), for a second pass that adds the
     /// direct light itself. `None` if the solver did not keep the direct part.

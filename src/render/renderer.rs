@@ -283,6 +283,13 @@ impl Renderer {
         Ok(())
     }
 
+    /// Whether a polygon lies in front of the camera, within its field of view and
+    /// beyond `camera.near`: a frame where none does shows the background only.
+    pub fn sees_a_polygon(&self) -> bool {
+        let view = crate::raster::sample_view(&self.scene);
+        !crate::raster::screen_polygons(&self.scene, &view).is_empty()
+    }
+
     /// What a user should know of this scene as this renderer draws it: the scene's
     /// own warnings, then its shadow method's (one line each, a line said many times
     /// said once with its count).

@@ -6,7 +6,8 @@
 use super::topics::Page;
 use anyhow::{Context, Result};
 use lumiere::Renderer;
-use lumiere::internals::radiosity::{self, Solution, Solver};
+use lumiere::radiosity_solution;
+use lumiere::settings::Solver;
 use lumiere::settings::ShadowMethod;
 use lumiere::{catalogue, load_scene};
 use serde::{Deserialize, Serialize};
@@ -128,17 +129,11 @@ pub fn render(
         let scene = renderer.scene().clone();
         let animate = settings.solver == Solver::Shooting;
         let mut next = 1;
-        let solution = radiosity::solve(&scene, &settings, &mut |mesh, state| {
+        let solution = radiosity_solution::solve(&scene, &settings, &mut |step| {
             // Steps 1, 2, 4, 8…: the early states change most.
-            if animate && state.steps >= next {
-                next = state.steps * 2;
-                snapshots.push(Solution {
-                    mesh: mesh.clone(),
-                    elements: state.displayed(mesh, settings.ambient),
-                    direct: None,
-                    display: settings.display,
-                    summary: format!("step {}", state.steps),
-                });
+            if animate && step.steps() >= next {
+                next = step.steps() * 2;
+                snapshots.push(step.snapshot(format!("step {}", step.steps())));
             }
         })?;
         note = solution.summary.clone();

@@ -8,9 +8,8 @@ use anyhow::{Context, Result};
 use lumiere::Image;
 use lumiere::Renderer;
 use lumiere::form_factors::{FormFactorMethod, polygon_form_factors};
-use lumiere::internals::radiosity::form_factors::patch_factors;
-use lumiere::internals::radiosity::gathering::gauss_seidel_observed;
-use lumiere::internals::radiosity::{self, Estimator, Solver};
+use lumiere::radiosity_solution;
+use lumiere::settings::Solver;
 use lumiere::{catalogue, load_scene};
 use std::sync::Arc;
 
@@ -55,7 +54,7 @@ fn render(scene: &str, sets: &[String]) -> Result<(Image, f32)> {
     renderer.check()?;
     if let Some(settings) = renderer.scene().radiosity.clone() {
         let scene = renderer.scene().clone();
-        let solution = radiosity::solve(&scene, &settings, &mut |_, _| {})?;
+        let solution = radiosity_solution::solve(&scene, &settings, &mut |_| {})?;
         renderer.set_radiosity_solution(Arc::new(solution));
     }
     Ok((renderer.render()?, exposure))
@@ -340,44 +339,25 @@ fn radiosity_residual() -> Result<Drawn> {
         .radiosity
         .clone()
         .context("radiosity-gathering has no [radiosity] table")?;
-    let mesh = radiosity::mesh(&scene, &settings)?;
-    let estimator = Estimator::new(settings.form_factors, settings.resolution, &scene);
-    let factors = patch_factors(&mesh, &estimator.element_to_patch(&mesh));
-    let emission: Vec<f64> = mesh
-        .patches
-        .iter()
-        .map(|p| p.emission[BAND] as f64)
+    let (patches, residuals) =
+        radiosity_solution::gathering_residuals(&scene, &settings, BAND, 1e-9)?;
+    let gathering: Vec<(f64, f64)> = (1..)
+        .zip(residuals)
+        .map(|(sweep, r)| (sweep as f64, r))
         .collect();
-    let reflectance: Vec<f64> = mesh
-        .patches
-        .iter()
-        .map(|p| p.reflectance[BAND] as f64)
-        .collect();
-    let area: Vec<f64> = mesh.patches.iter().map(|p| p.area).collect();
-    let emitted: f64 = area.iter().zip(&emission).map(|(a, e)| a * e).sum();
-    let mut gathering = Vec::new();
-    gauss_seidel_observed(&factors, &emission, &reflectance, 1e-9, &mut |b| {
-        let residual: f64 = (0..b.len())
-            .map(|i| {
-                let gathered: f64 = factors[i].iter().zip(b).map(|(f, b)| f * b).sum();
-                area[i] * (emission[i] + reflectance[i] * gathered - b[i]).abs()
-            })
-            .sum();
-        gathering.push(((gathering.len() + 1) as f64, residual / emitted));
-    });
     let mut shooting_settings = settings.clone();
     shooting_settings.solver = Solver::Shooting;
     shooting_settings.unshot = 1e-3;
     let mut shooting = Vec::new();
-    radiosity::solve(&scene, &shooting_settings, &mut |mesh, state| {
-        shooting.push((state.steps as f64, state.unshot_fraction(mesh)));
+    radiosity_solution::solve(&scene, &shooting_settings, &mut |step| {
+        shooting.push((step.steps() as f64, step.unshot_fraction()));
     })?;
     let caption = format!(
         "The Cornell box of radiosity-gathering ({} patches): gathering's residual power \
          Σ A|E + ρFB − B| after each Gauss–Seidel sweep, and shooting's unshot power after each \
          step, both as fractions of the emitted power (green band). A sweep updates every patch; a \
          step shoots one: gathering reached {} in {} sweeps, shooting {} in {} steps.",
-        mesh.patches.len(),
+        patches,
         fmt(gathering.last().map_or(f64::NAN, |p| p.1)),
         gathering.len(),
         fmt(shooting.last().map_or(f64::NAN, |p| p.1)),

@@ -20,7 +20,11 @@ fn layer(module: &str) -> Option<u32> {
         "shadow" | "shading" | "radiosity" | "media" => 6,
         "global" => 7,
         "render" => 8,
-        "catalogue" | "export" | "environment_maps" => 9,
+        "catalogue"
+        | "export"
+        | "environment_maps"
+        | "radiosity_solution"
+        | "visible_surface_pass" => 9,
         "load" => 10,
         "viewer" => 11,
         "cli" | "main" | "lib" | "internals" => 12,
