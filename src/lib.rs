@@ -26,8 +26,10 @@
 //! by that answer; the box filter gives the pixels. Radiosity, Whitted's ray tracing
 //! and the two-pass method are the other integrators over the same passes.
 //!
-//! Everything not re-exported here lives in [`internals`]: the modules themselves,
-//! there for the tests and the command line's instruments, not a stable API.
+//! Beside the root's items, public modules hold the instruments that look inside
+//! a method ([`form_factors`], [`shadow_polygons`], [`environment_maps`],
+//! [`radiosity_solution`], [`visible_surface_pass`]) and the viewer's engine
+//! ([`viewer`]). The modules behind them are hidden: the checks' door, not an API.
 
 #![warn(missing_docs)]
 // A new variant of a method or kind enum must be placed by hand wherever its
@@ -39,18 +41,39 @@ pub mod catalogue;
 pub mod environment_maps;
 mod error;
 pub mod export;
+// The modules behind the API, one per layer or family of papers. Public for the
+// checks in tests/, which look inside a method (a hemi-cube's item buffer, Crow's
+// counts, a convex subtraction), and hidden from the documentation: not a stable
+// API. Nothing but the checks names them (tests/suite/project/layers.rs holds the
+// command line, the Python package, the web crate and the examples to the items
+// above and below).
 #[doc(hidden)]
-pub mod internals;
+pub mod geometry;
+#[doc(hidden)]
+pub mod global;
+#[doc(hidden)]
+pub mod image_io;
 mod load;
+#[doc(hidden)]
+pub mod media;
+#[doc(hidden)]
+pub mod radiosity;
 pub mod radiosity_solution;
+#[doc(hidden)]
+pub mod raster;
+#[doc(hidden)]
+pub mod render;
+#[doc(hidden)]
+pub mod scene;
 pub mod settings;
+#[doc(hidden)]
+pub mod shading;
+#[doc(hidden)]
+pub mod shadow;
+#[doc(hidden)]
+pub mod texture;
 pub mod viewer;
 pub mod visible_surface_pass;
-
-// The crate's own paths (`crate::shadow::…`) name the modules behind the API.
-use internals::{
-    geometry, global, image_io, media, radiosity, raster, render, scene, shading, shadow, texture,
-};
 
 /// The form factors between a scene's polygons, as `lumiere form-factors` prints
 /// them: each polygon one patch, by the hemi-cube, Nusselt's analog or the

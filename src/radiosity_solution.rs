@@ -85,7 +85,11 @@ pub fn gathering_residuals(
     let factors = patch_factors(&mesh, &estimator.element_to_patch(&mesh));
     let of_band = |v: glam::Vec3| v[band.min(2)] as f64;
     let emission: Vec<f64> = mesh.patches.iter().map(|p| of_band(p.emission)).collect();
-    let reflectance: Vec<f64> = mesh.patches.iter().map(|p| of_band(p.reflectance)).collect();
+    let reflectance: Vec<f64> = mesh
+        .patches
+        .iter()
+        .map(|p| of_band(p.reflectance))
+        .collect();
     let area: Vec<f64> = mesh.patches.iter().map(|p| p.area).collect();
     let emitted: f64 = area.iter().zip(&emission).map(|(a, e)| a * e).sum();
     let mut residuals = Vec::new();

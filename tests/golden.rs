@@ -13,7 +13,7 @@
 //! committing it.
 
 use libtest_mimic::{Arguments, Failed, Trial};
-use lumiere::internals::image_io::{self, Image};
+use lumiere::image_io::{self, Image};
 use lumiere::{catalogue, load_scene};
 use std::path::{Path, PathBuf};
 

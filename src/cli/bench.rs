@@ -2,9 +2,9 @@
 
 use super::timing::median;
 use anyhow::Result;
+use lumiere::settings::{Filter, ShadowMethod};
 use lumiere::visible_surface_pass::VisibleSurfacePass;
 use lumiere::{load_scene, render};
-use lumiere::settings::{Filter, ShadowMethod};
 
 /// Time whole renders (median of several runs) per scene, variant (shadow method or
 /// texture filter) and size, in milliseconds and million samples per second, and

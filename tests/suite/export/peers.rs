@@ -5,7 +5,7 @@
 
 use crate::support::{self, lumiere_ok};
 
-use lumiere::internals::image_io;
+use lumiere::image_io;
 use std::path::Path;
 use std::process::Command;
 

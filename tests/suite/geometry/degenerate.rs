@@ -9,9 +9,9 @@
 use crate::support;
 
 use glam::{DVec2, DVec3};
-use lumiere::internals::geometry::polygon::area;
-use lumiere::internals::geometry::{sutherland_hodgman, weiler_atherton};
-use lumiere::internals::raster::covered_samples;
+use lumiere::geometry::polygon::area;
+use lumiere::geometry::{sutherland_hodgman, weiler_atherton};
+use lumiere::raster::covered_samples;
 use proptest::prelude::*;
 use support::{origin_view, screen_polygon};
 
@@ -150,11 +150,11 @@ proptest! {
 mod scenes {
     use glam::DVec3;
     use lumiere::Scene;
-    use lumiere::internals::radiosity::hemicube::Hemicube;
-    use lumiere::internals::radiosity::mesh::Mesh;
-    use lumiere::internals::radiosity::receivers::Receivers;
-    use lumiere::internals::shadow::shadow_volumes::{Source, quads_from};
+    use lumiere::radiosity::hemicube::Hemicube;
+    use lumiere::radiosity::mesh::Mesh;
+    use lumiere::radiosity::receivers::Receivers;
     use lumiere::settings::Division;
+    use lumiere::shadow::shadow_volumes::{Source, quads_from};
     use proptest::prelude::*;
     use std::collections::HashMap;
 

@@ -9,11 +9,11 @@
 use crate::support;
 
 use glam::{DVec3, Vec3};
-use lumiere::internals::geometry::sampling::Stream;
-use lumiere::internals::global::TracedScene;
-use lumiere::internals::global::final_gather::{FinalGather, Strata, gather_hemisphere};
-use lumiere::internals::global::traced_scene::Leaving;
-use lumiere::internals::radiosity;
+use lumiere::geometry::sampling::Stream;
+use lumiere::global::TracedScene;
+use lumiere::global::final_gather::{FinalGather, Strata, gather_hemisphere};
+use lumiere::global::traced_scene::Leaving;
+use lumiere::radiosity;
 use lumiere::{Renderer, Scene};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -86,7 +86,7 @@ fn gather_square(
     x: DVec3,
     n: DVec3,
     m: usize,
-) -> lumiere::internals::global::final_gather::Gathered {
+) -> lumiere::global::final_gather::Gathered {
     let strata = Strata {
         m,
         n: (PI * m as f64).round() as usize,

@@ -9,7 +9,7 @@
 
 use crate::support;
 
-use lumiere::internals::image_io::{self, Image};
+use lumiere::image_io::{self, Image};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use support::flip;

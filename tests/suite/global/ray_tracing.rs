@@ -11,12 +11,12 @@ use glam::{DMat3, DVec3, Vec3};
 use lumiere::BufferData;
 use lumiere::Renderer;
 use lumiere::Scene;
-use lumiere::internals::global::TracedScene;
-use lumiere::internals::global::traced_scene::{Leaving, SurfaceHit};
-use lumiere::internals::global::whitted::{Whitted, reflected_direction, refracted_direction};
-use lumiere::internals::raster::View;
-use lumiere::internals::shading::optics;
+use lumiere::global::TracedScene;
+use lumiere::global::traced_scene::{Leaving, SurfaceHit};
+use lumiere::global::whitted::{Whitted, reflected_direction, refracted_direction};
+use lumiere::raster::View;
 use lumiere::settings::GlobalSettings;
+use lumiere::shading::optics;
 use proptest::prelude::*;
 use support::{camera, error_line, scene_from_text};
 
@@ -24,8 +24,8 @@ use support::{camera, error_line, scene_from_text};
 /// (validated as a scene file's are).
 fn global(lines: &str) -> GlobalSettings {
     let text = format!("method = \"ray-tracing\"\n{lines}");
-    let file: lumiere::internals::scene::file::GlobalFile = toml::from_str(&text).unwrap();
-    lumiere::internals::scene::global_settings::from_file(&file)
+    let file: lumiere::scene::file::GlobalFile = toml::from_str(&text).unwrap();
+    lumiere::scene::global_settings::from_file(&file)
         .unwrap_or_else(|e| panic!("{}", error_line(&e)))
 }
 

@@ -9,12 +9,12 @@
 use crate::support;
 
 use glam::DVec3;
-use lumiere::internals::geometry::lambert_contour::form_factor;
-use lumiere::internals::radiosity::extended::{self, Extension};
-use lumiere::internals::radiosity::hemicube::Hemicube;
-use lumiere::internals::radiosity::receivers::Receivers;
-use lumiere::internals::radiosity::windows::{Follow, Windows};
-use lumiere::internals::radiosity::{Division, Estimator, FormFactorMethod, Mesh};
+use lumiere::geometry::lambert_contour::form_factor;
+use lumiere::radiosity::extended::{self, Extension};
+use lumiere::radiosity::hemicube::Hemicube;
+use lumiere::radiosity::receivers::Receivers;
+use lumiere::radiosity::windows::{Follow, Windows};
+use lumiere::radiosity::{Division, Estimator, FormFactorMethod, Mesh};
 use lumiere::settings::Mechanisms;
 use lumiere::{Scene, render};
 use support::{polygon, scene_from_text, unit_cube_walls};
@@ -529,9 +529,9 @@ fn two_rooms_by_lumiere(tau: f64) -> Vec<f64> {
 
 /// The scene's mesh and its first pass solved by gathering with hemi-cubes (the
 /// scene's resolution), to 1e-9.
-fn solved_extended(scene: &Scene) -> (Mesh, lumiere::internals::radiosity::gathering::Gathered) {
+fn solved_extended(scene: &Scene) -> (Mesh, lumiere::radiosity::gathering::Gathered) {
     let settings = scene.radiosity.clone().unwrap();
-    let mesh = lumiere::internals::radiosity::mesh(scene, &settings).unwrap();
+    let mesh = lumiere::radiosity::mesh(scene, &settings).unwrap();
     let estimator = Estimator::new(FormFactorMethod::Hemicube, settings.resolution, scene);
     let solved = extended::gather(
         scene,
@@ -548,7 +548,7 @@ fn solved_extended(scene: &Scene) -> (Mesh, lumiere::internals::radiosity::gathe
 /// The scene's first-pass extension, or Rushmeier & Torrance's with nothing to
 /// follow (the same solver on a scene without specular surfaces).
 fn extension_of(scene: &Scene) -> Extension {
-    lumiere::internals::radiosity::extension(scene).unwrap_or(Extension {
+    lumiere::radiosity::extension(scene).unwrap_or(Extension {
         follow: Follow {
             mirrors: true,
             panes: true,
@@ -663,7 +663,7 @@ fn a_closed_room_balances_emitted_and_absorbed_power() {
         text += "[[objects]]\nshape = \"box\"\nname = \"panel\"\nmaterial = \"panel\"\ntransform = [{ scale = [0.5, 0.01, 0.5] }, { translate = [0.5, 0.7, 0.4] }]\n";
         let scene = scene_from_text(&text, &[]);
         let settings = scene.radiosity.clone().unwrap();
-        let mesh = lumiere::internals::radiosity::mesh(&scene, &settings).unwrap();
+        let mesh = lumiere::radiosity::mesh(&scene, &settings).unwrap();
         let estimator = Estimator::new(FormFactorMethod::Hemicube, settings.resolution, &scene);
         let extension = extension_of(&scene);
         let terms = extended::element_terms(&scene, &mesh, &estimator, extension).unwrap();

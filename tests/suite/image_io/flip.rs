@@ -6,7 +6,7 @@
 use crate::support;
 
 use lumiere::glam::Vec3;
-use lumiere::internals::image_io::{self, FlipRange, Image};
+use lumiere::image_io::{self, FlipRange, Image};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

@@ -10,7 +10,7 @@
 //! The reference's moments are computed here by hand (a mean and an unbiased
 //! variance per channel), not by the library's `Moments::of`.
 
-use lumiere::internals::image_io::{Candidate, Image, Moments, statistical_test};
+use lumiere::image_io::{Candidate, Image, Moments, statistical_test};
 use lumiere::{load_scene, render};
 
 const ALPHA: f64 = 0.001;

@@ -9,8 +9,8 @@
 
 use crate::support;
 
-use lumiere::internals::image_io::{self, Format};
-use lumiere::internals::scene::{scene_from_table, tables};
+use lumiere::image_io::{self, Format};
+use lumiere::scene::{scene_from_table, tables};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 
@@ -263,7 +263,7 @@ fn an_exr_declaring_a_huge_block_is_refused_from_its_header() {
         error.contains("larger than 16384 on a side") || error.contains("a block of this image"),
         "{error}"
     );
-    assert!(lumiere::internals::texture::Texels::decode(bytes).is_err());
+    assert!(lumiere::texture::Texels::decode(bytes).is_err());
 }
 
 /// An MTL file's `map_Kd` is loaded (relative to the OBJ file) and scales its

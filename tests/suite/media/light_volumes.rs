@@ -7,9 +7,9 @@
 use crate::support::{self, render};
 
 use glam::{DVec3, Vec3};
-use lumiere::internals::media::single_scattering::{Scattering, phase, point_integrand};
-use lumiere::internals::render::visible_surface;
-use lumiere::internals::shadow::light_volumes::LightVolumes;
+use lumiere::media::single_scattering::{Scattering, phase, point_integrand};
+use lumiere::render::visible_surface;
+use lumiere::shadow::light_volumes::LightVolumes;
 use lumiere::{Image, Scene, load_scene};
 
 fn scene_with(spec: &str, sets: &[&str]) -> Scene {
@@ -92,7 +92,7 @@ fn under_an_open_sky_the_closed_form() {
     let scattering = Scattering::new(&medium);
     let mut checked = 0;
     for k in 0..surface.samples.len() {
-        let (direction, length) = lumiere::internals::media::viewing_ray(&view, &surface, k, 1e3);
+        let (direction, length) = lumiere::media::viewing_ray(&view, &surface, k, 1e3);
         assert_eq!(lit.of(k), &[[0.0, length]], "sample {k}");
         let found = scattering.inscattered(&scene.lights[0], view.eye, direction, lit.of(k));
         let (st, ss) = (medium.extinction, medium.scattering());
@@ -248,15 +248,14 @@ fn under_the_sun_shadow_volumes_are_ray_casting() {
         &["camera.width=128", "camera.height=96"],
     );
     let (view, surface) = visible_surface(&scene);
-    let fractions =
-        |method| match lumiere::internals::shadow::compute(&scene, &view, &surface, method)
-            .unwrap()
-            .per_light
-            .remove(0)
-        {
-            Some(lumiere::internals::raster::LightVisibility::Fraction(f)) => f,
-            _ => panic!("a fraction"),
-        };
+    let fractions = |method| match lumiere::shadow::compute(&scene, &view, &surface, method)
+        .unwrap()
+        .per_light
+        .remove(0)
+    {
+        Some(lumiere::raster::LightVisibility::Fraction(f)) => f,
+        _ => panic!("a fraction"),
+    };
     let crow = fractions(lumiere::settings::ShadowMethod::ShadowVolumes);
     let cast = fractions(lumiere::settings::ShadowMethod::RayCast);
     let lit = cast.iter().filter(|&&v| v == 1.0).count();
@@ -358,8 +357,8 @@ fn in_a_box_the_sun_is_attenuated_on_its_way_in() {
 /// leaving a step out costs a tenth.
 #[test]
 fn ray_marching_counts_every_step() {
-    use lumiere::internals::media::ray_marching;
-    use lumiere::internals::scene::ray_queries::SceneRays;
+    use lumiere::media::ray_marching;
+    use lumiere::scene::ray_queries::SceneRays;
     let scene = scene_file(OPEN_SUN, &[]);
     let medium = scene.medium.clone().unwrap();
     let lumiere::Light::Distant(sun) = &scene.lights[0] else {

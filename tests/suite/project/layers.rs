@@ -3,7 +3,7 @@
 //! radiosity, media (siblings) → global (ray tracing and the two-pass method's
 //! second pass, over shading's light model and radiosity's solution) → render →
 //! catalogue, export and environment maps → the loader → the viewer's engine → the command line, the
-//! crate root and its internals. A module names only modules
+//! crate root. A module names only modules
 //! below its own layer (and its own): read from the sources, every `crate::` path
 //! checked. Inside a folder, the files import one another without a circle.
 
@@ -27,7 +27,7 @@ fn layer(module: &str) -> Option<u32> {
         | "visible_surface_pass" => 9,
         "load" => 10,
         "viewer" => 11,
-        "cli" | "main" | "lib" | "internals" => 12,
+        "cli" | "main" | "lib" => 12,
         _ => return None,
     })
 }
@@ -209,4 +209,88 @@ fn no_folder_has_a_circle_of_files() {
     circles.sort();
     circles.dedup();
     assert!(circles.is_empty(), "{}", circles.join("\n"));
+}
+
+/// The modules behind the API, public for the checks in tests/ alone.
+const HIDDEN: [&str; 11] = [
+    "geometry",
+    "global",
+    "image_io",
+    "media",
+    "radiosity",
+    "raster",
+    "render",
+    "scene",
+    "shading",
+    "shadow",
+    "texture",
+];
+
+/// The hidden modules `text` names through the crate: `lumiere::name` paths and the
+/// names inside `use lumiere::{a, b::c}` groups.
+fn hidden_named(text: &str) -> Vec<&'static str> {
+    let mut found = Vec::new();
+    for (i, _) in text.match_indices("lumiere::") {
+        let rest = &text[i + "lumiere::".len()..];
+        let names: Vec<&str> = match rest.strip_prefix('{') {
+            Some(group) => {
+                let group = &group[..group.find('}').unwrap_or(group.len())];
+                group.split(',').map(|n| n.trim()).collect()
+            }
+            None => vec![rest],
+        };
+        for name in names {
+            let head: String = name
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            // `lumiere::render` alone is also the root's function.
+            let into = name[head.len()..].starts_with("::");
+            if into || head != "render" {
+                found.extend(HIDDEN.iter().filter(|h| **h == head));
+            }
+        }
+    }
+    found
+}
+
+#[test]
+fn only_the_checks_open_the_hidden_modules() {
+    // The parser sees what it must: a path, a group, a nested group.
+    assert_eq!(hidden_named("use lumiere::raster::View;"), ["raster"]);
+    assert_eq!(
+        hidden_named("use lumiere::{Image, shadow::x, catalogue};"),
+        ["shadow"]
+    );
+    assert_eq!(
+        hidden_named("use lumiere::{render::band_rows, raster};"),
+        ["render", "raster"]
+    );
+    assert!(hidden_named("use lumiere::{Renderer, render, form_factors};").is_empty());
+    assert!(hidden_named("lumiere::render(&scene); lumiere::scene_from_toml").is_empty());
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    for dir in [
+        "src/cli",
+        "src/main.rs",
+        "python/src",
+        "web/src",
+        "examples",
+    ] {
+        let path = root.join(dir);
+        if path.is_dir() {
+            sources(&path, &mut files);
+        } else {
+            files.push(path);
+        }
+    }
+    assert!(files.len() > 40, "{} files", files.len());
+    let mut violations = Vec::new();
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap();
+        for name in hidden_named(&text) {
+            violations.push(format!("{} names lumiere::{name}", file.display()));
+        }
+    }
+    assert!(violations.is_empty(), "{violations:#?}");
 }

@@ -9,7 +9,7 @@
 use crate::support;
 
 use glam::{DVec3, Vec3};
-use lumiere::internals::radiosity;
+use lumiere::radiosity;
 use lumiere::{Renderer, Scene};
 use std::f64::consts::PI;
 use support::{error_line, polygon, scene_from_text, unit_cube_walls};

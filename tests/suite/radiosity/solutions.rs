@@ -6,17 +6,17 @@
 
 use glam::{DVec3, Vec3};
 use lumiere::Renderer;
-use lumiere::internals::geometry::lambert_contour::form_factor;
-use lumiere::internals::radiosity::form_factors::patch_factors;
-use lumiere::internals::radiosity::gathering::{gather, gauss_seidel};
-use lumiere::internals::radiosity::hemicube::Hemicube;
-use lumiere::internals::radiosity::receivers::Receivers;
-use lumiere::internals::radiosity::shooting::Shooting;
-use lumiere::internals::radiosity::{
+use lumiere::geometry::lambert_contour::form_factor;
+use lumiere::radiosity::form_factors::patch_factors;
+use lumiere::radiosity::gathering::{gather, gauss_seidel};
+use lumiere::radiosity::hemicube::Hemicube;
+use lumiere::radiosity::receivers::Receivers;
+use lumiere::radiosity::shooting::Shooting;
+use lumiere::radiosity::{
     Display, Division, Estimator, FormFactorMethod, Mesh, Settings, Solver, Stop, solve,
 };
-use lumiere::internals::scene::tables;
-use lumiere::internals::scene::{Camera, Scene, scene_from_table};
+use lumiere::scene::tables;
+use lumiere::scene::{Camera, Scene, scene_from_table};
 use std::f64::consts::PI;
 
 // ---------------------------------------------------------------------------
@@ -662,7 +662,7 @@ mod properties {
                 corners.pop();
             }
             let scene = scene_of(&[(corners.clone(), 0.5, 0.0)]);
-            let polygon_area = lumiere::internals::geometry::polygon::area(&corners);
+            let polygon_area = lumiere::geometry::polygon::area(&corners);
             let mesh = Mesh::build(&scene, Division::Size(patch), Division::Size(element)).unwrap();
             let patch_sum: f64 = mesh.patches.iter().map(|p| p.area).sum();
             let element_sum: f64 = mesh.elements.iter().map(|e| e.area).sum();
@@ -672,12 +672,12 @@ mod properties {
             for (i, p) in mesh.patches.iter().enumerate() {
                 prop_assert_eq!(p.elements.start, next);
                 next = p.elements.end;
-                let p_area = lumiere::internals::geometry::polygon::area(&p.corners);
+                let p_area = lumiere::geometry::polygon::area(&p.corners);
                 prop_assert!(relative(p_area, p.area) < 1e-9);
                 for e in p.elements.clone() {
                     prop_assert_eq!(mesh.elements[e].patch, i);
                     let c = mesh.element_corners(e);
-                    let n = lumiere::internals::geometry::polygon::newell_normal(&c);
+                    let n = lumiere::geometry::polygon::newell_normal(&c);
                     prop_assert!(n.normalize().dot(scene.polygons[0].normal) > 1.0 - 1e-9);
                 }
             }
@@ -1227,7 +1227,7 @@ fn gathering_keeps_the_direct_part_of_each_element() {
 /// floor at resolution 7.)
 #[test]
 fn the_nusselt_counts_from_inside_a_closed_box_sum_to_one() {
-    use lumiere::internals::radiosity::nusselt::Nusselt;
+    use lumiere::radiosity::nusselt::Nusselt;
     let scene = closed_cube(0.5, [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
     let mesh = Mesh::build(&scene, Division::Whole, Division::Whole).unwrap();
     let receivers = Receivers::patches(&mesh);

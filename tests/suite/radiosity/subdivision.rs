@@ -3,9 +3,9 @@
 //! approaches the uniformly fine one with fewer elements.
 
 use glam::{DVec3, Vec3};
-use lumiere::internals::radiosity::{Division, Mesh, Settings, Solver, solve};
-use lumiere::internals::scene::{Scene, scene_from_table, tables};
 use lumiere::load_scene;
+use lumiere::radiosity::{Division, Mesh, Settings, Solver, solve};
+use lumiere::scene::{Scene, scene_from_table, tables};
 use proptest::prelude::*;
 
 /// The gathering entry at 64², with elements of `element` mm in patches of 140 mm.

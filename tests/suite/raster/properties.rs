@@ -3,9 +3,9 @@
 use crate::support;
 
 use glam::DVec3;
-use lumiere::internals::geometry::polygon::area;
-use lumiere::internals::geometry::sutherland_hodgman::clip;
-use lumiere::internals::raster::covered_samples;
+use lumiere::geometry::polygon::area;
+use lumiere::geometry::sutherland_hodgman::clip;
+use lumiere::raster::covered_samples;
 use proptest::prelude::*;
 use support::{origin_view, screen_polygon};
 
@@ -168,9 +168,9 @@ proptest! {
 
 mod bvh {
     use glam::DVec3;
-    use lumiere::internals::scene::ray_queries::SceneRays;
-    use lumiere::internals::scene::ray_queries::segment_meets_polygon;
-    use lumiere::internals::scene::{Polygon, Vertex};
+    use lumiere::scene::ray_queries::SceneRays;
+    use lumiere::scene::ray_queries::segment_meets_polygon;
+    use lumiere::scene::{Polygon, Vertex};
     use proptest::prelude::*;
 
     fn point() -> impl Strategy<Value = DVec3> {
@@ -215,8 +215,8 @@ mod bvh {
 
 mod weiler_atherton {
     use glam::DVec2;
-    use lumiere::internals::geometry::sutherland_hodgman;
-    use lumiere::internals::geometry::weiler_atherton::{Region, area, clip, contour_area};
+    use lumiere::geometry::sutherland_hodgman;
+    use lumiere::geometry::weiler_atherton::{Region, area, clip, contour_area};
     use proptest::prelude::*;
 
     /// A star-shaped (so simple, possibly concave) polygon: n spokes around a centre

@@ -1,7 +1,7 @@
 //! Where a pixel's samples lie: the regular grid and the rotated grid (the
 //! accumulation buffer's shifted frames), checked by the coverage of an edge.
 
-use lumiere::internals::render::Renderer;
+use lumiere::render::Renderer;
 use lumiere::scene_from_toml;
 
 /// An emitting polygon (radiance 1, nothing else lit) over the left of the image,

@@ -1,10 +1,10 @@
 //! The frame: bands, threads, the renderer's kept work, buffers, per-light weights
 //! and the radiosity integrator's lights.
 
-use lumiere::internals::image_io::{BufferData, Image};
-use lumiere::internals::raster::NO_POLYGON;
-use lumiere::internals::render::{Prepasses, Renderer, visible_surface};
-use lumiere::internals::scene::{Light, Scene};
+use lumiere::image_io::{BufferData, Image};
+use lumiere::raster::NO_POLYGON;
+use lumiere::render::{Prepasses, Renderer, visible_surface};
+use lumiere::scene::{Light, Scene};
 use lumiere::settings::ShadowMethod;
 use lumiere::{load_scene, render};
 
@@ -214,8 +214,7 @@ fn buffers_hold_what_the_passes_computed() {
     assert_eq!(ids, &expected);
     assert!(ids.contains(&NO_POLYGON) || ids.iter().all(|&i| i != NO_POLYGON));
     let visibility =
-        lumiere::internals::shadow::compute(&scene, &view, &surface, ShadowMethod::ShadowVolumes)
-            .unwrap();
+        lumiere::shadow::compute(&scene, &view, &surface, ShadowMethod::ShadowVolumes).unwrap();
     let BufferData::Values { data, channels: 1 } = &buffer("visibility-0").data else {
         panic!("values")
     };
@@ -227,7 +226,7 @@ fn buffers_hold_what_the_passes_computed() {
         };
         assert_eq!(data[k], expected, "sample {k}");
     }
-    let counts = lumiere::internals::shadow::shadow_volumes::counts(
+    let counts = lumiere::shadow::shadow_volumes::counts(
         &scene,
         &view,
         &surface,

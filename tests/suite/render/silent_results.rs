@@ -3,8 +3,8 @@
 
 use crate::support;
 
-use lumiere::internals::image_io::{self, Image};
-use lumiere::internals::scene::{scene_from_table, tables};
+use lumiere::image_io::{self, Image};
+use lumiere::scene::{scene_from_table, tables};
 
 use support::Files;
 

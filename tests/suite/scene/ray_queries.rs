@@ -4,13 +4,13 @@
 use crate::support;
 
 use glam::{DVec2, DVec3};
-use lumiere::internals::raster::screen_polygons;
-use lumiere::internals::raster::{ScreenPolygon, View};
-use lumiere::internals::render::visible_surface;
-use lumiere::internals::scene::ray_queries::{SceneRays, ray_meets_polygon, segment_meets_polygon};
-use lumiere::internals::scene::{Polygon, Vertex};
-use lumiere::internals::texture::Interpolation;
 use lumiere::load_scene;
+use lumiere::raster::screen_polygons;
+use lumiere::raster::{ScreenPolygon, View};
+use lumiere::render::visible_surface;
+use lumiere::scene::ray_queries::{SceneRays, ray_meets_polygon, segment_meets_polygon};
+use lumiere::scene::{Polygon, Vertex};
+use lumiere::texture::Interpolation;
 use proptest::prelude::*;
 use support::vertex;
 

@@ -3,14 +3,14 @@
 //! Carpenter 1984) against the exact irradiance.
 
 use glam::{DVec2, DVec3, Vec3};
-use lumiere::internals::geometry::sampling::Stream;
-use lumiere::internals::scene::{
+use lumiere::geometry::sampling::Stream;
+use lumiere::scene::{
     DistantLight, Light, PointLight, PolygonLight, Reflectance, SphereLight, SpotDistribution,
     SpotLight,
 };
-use lumiere::internals::shading::lambert_contour::projected_solid_angle;
-use lumiere::internals::shading::light_model::{SurfacePoint, reflected};
-use lumiere::internals::shading::sphere_form_factor;
+use lumiere::shading::lambert_contour::projected_solid_angle;
+use lumiere::shading::light_model::{SurfacePoint, reflected};
+use lumiere::shading::sphere_form_factor;
 use std::f64::consts::PI;
 
 /// An L of area 3 in the plane y = 2, facing down: [0,2]×[0,1] ∪ [0,1]×[0,2] in (x, z).

@@ -2,9 +2,9 @@
 //! with the code: quadrature over the sphere written here, textbook values, and the
 //! transmitted power computed from the transmitted amplitudes.
 
-use lumiere::internals::media::single_scattering::phase;
-use lumiere::internals::shading::optics::{fresnel, schlick};
+use lumiere::media::single_scattering::phase;
 use lumiere::settings::{MediumMethod, MediumSettings, PhaseFunction};
+use lumiere::shading::optics::{fresnel, schlick};
 use std::f64::consts::PI;
 
 fn medium(phase: PhaseFunction, g: f64) -> MediumSettings {
@@ -206,7 +206,7 @@ fn schlick_stays_near_fresnel_for_glass() {
 #[test]
 fn latitude_longitude_follows_the_course_formula() {
     use glam::{DVec2, DVec3};
-    use lumiere::internals::texture::environment::lat_long;
+    use lumiere::texture::environment::lat_long;
     let world = |e: f64, a: f64| {
         let (e, a) = (e.to_radians(), a.to_radians());
         DVec3::new(e.cos() * a.sin(), e.sin(), -e.cos() * a.cos())
@@ -247,7 +247,7 @@ fn latitude_longitude_follows_the_course_formula() {
 #[test]
 fn latitude_longitude_steps_go_the_short_way_round() {
     use glam::DVec2;
-    use lumiere::internals::texture::environment::lat_long::{direction, uv_step};
+    use lumiere::texture::environment::lat_long::{direction, uv_step};
     for (from, to) in [(0.50, 0.49), (0.50, 0.51), (0.995, 0.005), (0.005, 0.995)] {
         let d = direction(DVec2::new(from, 0.4));
         let offset = direction(DVec2::new(to, 0.4)) - d;

@@ -3,9 +3,9 @@
 //! converging to it as resolution grows (shadow maps).
 
 use lumiere::Scene;
-use lumiere::internals::raster::VisibleSurface;
-use lumiere::internals::render::visible_surface;
 use lumiere::load_scene;
+use lumiere::raster::VisibleSurface;
+use lumiere::render::visible_surface;
 use lumiere::settings::ShadowMethod;
 
 /// The first light's visibility per sample of entry `id` at `w × h`, with `sets`.
@@ -20,7 +20,7 @@ fn mask(
     all.extend(sets.iter().map(|s| s.to_string()));
     let scene = load_scene(id, &all).unwrap();
     let (view, surface) = visible_surface(&scene);
-    let visibility = lumiere::internals::shadow::compute(&scene, &view, &surface, method).unwrap();
+    let visibility = lumiere::shadow::compute(&scene, &view, &surface, method).unwrap();
     let values = (0..surface.samples.len())
         .map(|k| visibility.fraction(0, k))
         .collect();
@@ -161,17 +161,17 @@ fn crow_and_the_count_buffer_count_alike() {
                 method,
                 ..scene.shadows.clone()
             };
-            lumiere::internals::shadow::light_band(&scene, &view, &surface, &settings, 0)
+            lumiere::shadow::light_band(&scene, &view, &surface, &settings, 0)
                 .unwrap()
                 .unwrap()
                 .counts
                 .unwrap()
         };
         let light = scene.lights[0].position().unwrap();
-        let start = lumiere::internals::shadow::shadow_volumes::eye_count_from(
+        let start = lumiere::shadow::shadow_volumes::eye_count_from(
             &scene,
             view.eye,
-            lumiere::internals::shadow::shadow_volumes::Source::Point(light),
+            lumiere::shadow::shadow_volumes::Source::Point(light),
         );
         assert_eq!(
             start > 0,
@@ -206,7 +206,7 @@ fn shadow_volumes_leak_on_an_open_mesh() {
     assert!(leaked > 200, "only {leaked} samples leak");
     let scene = load_scene(id, &[]).unwrap();
     assert_eq!(
-        lumiere::internals::shadow::shadow_volumes::open_objects(&scene),
+        lumiere::shadow::shadow_volumes::open_objects(&scene),
         ["tube"]
     );
 }
@@ -218,12 +218,12 @@ fn shadow_volumes_leak_on_an_open_mesh() {
 fn the_curved_scene_is_made_of_closed_meshes() {
     let scene = load_scene(CURVED, &[]).unwrap();
     assert!(scene.objects.iter().any(|o| o.name.starts_with("teapot")));
-    let open = lumiere::internals::shadow::shadow_volumes::open_objects(&scene);
+    let open = lumiere::shadow::shadow_volumes::open_objects(&scene);
     assert!(open.is_empty(), "open: {open:?}");
 }
 
 mod closed_shapes {
-    use lumiere::internals::scene::{scene_from_table, tables};
+    use lumiere::scene::{scene_from_table, tables};
     use proptest::prelude::*;
 
     proptest! {
@@ -252,7 +252,7 @@ mod closed_shapes {
             let scene = scene_from_table(table, &lumiere::catalogue::resources())
                 .map_err(|e| crate::support::error_line(&e))
                 .unwrap();
-            let open = lumiere::internals::shadow::shadow_volumes::open_objects(&scene);
+            let open = lumiere::shadow::shadow_volumes::open_objects(&scene);
             prop_assert!(open.is_empty(), "open: {:?}", open);
         }
     }
@@ -291,7 +291,7 @@ mod edge_cases {
         METHODS
             .iter()
             .map(|&m| {
-                let v = lumiere::internals::shadow::compute(&scene, &view, &surface, m).unwrap();
+                let v = lumiere::shadow::compute(&scene, &view, &surface, m).unwrap();
                 let values = surface
                     .samples
                     .iter()
@@ -403,7 +403,7 @@ fn scanline_shadows_agree_with_ray_casting() {
 /// cost, never the image.
 #[test]
 fn scanline_pruning_changes_nothing() {
-    use lumiere::internals::shadow::scanline_shadows::visibility_with;
+    use lumiere::shadow::scanline_shadows::visibility_with;
     let scene = load_scene(
         CURVED,
         &["camera.width=128".into(), "camera.height=96".into()],
@@ -431,8 +431,8 @@ fn shadow_polygons_agree_with_ray_casting() {
 }
 
 mod shadow_polygon_areas {
-    use lumiere::internals::shadow::shadow_polygon_areas::receiver_shadows;
     use lumiere::load_scene;
+    use lumiere::shadow::shadow_polygon_areas::receiver_shadows;
 
     /// The shadow polygons' areas: a square occluder of side s at height h under a
     /// point light at height H over its centre shadows a square of side s·H/(H − h)

@@ -3,10 +3,10 @@
 use crate::support;
 
 use glam::{DVec3, Vec3};
-use lumiere::internals::geometry::lambert_contour::projected_solid_angle;
-use lumiere::internals::raster::{NO_POLYGON, ScreenPolygon, rasterize, zbuffer};
-use lumiere::internals::render::visible_surface;
-use lumiere::internals::scene::{Light, Scene};
+use lumiere::geometry::lambert_contour::projected_solid_angle;
+use lumiere::raster::{NO_POLYGON, ScreenPolygon, rasterize, zbuffer};
+use lumiere::render::visible_surface;
+use lumiere::scene::{Light, Scene};
 use lumiere::{load_scene, render};
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -74,7 +74,7 @@ proptest! {
         visible in prop::collection::vec(triangle(), 1..10),
         invisible in prop::collection::vec(triangle(), 0..8),
     ) {
-        use lumiere::internals::raster::{EdgeTable, covered_samples, scan_out};
+        use lumiere::raster::{EdgeTable, covered_samples, scan_out};
         let view = origin_view(64, 48);
         let (w, h) = (view.width, view.height);
         let shown: Vec<ScreenPolygon> = visible
@@ -409,7 +409,7 @@ fn ray_cast_shadow_of_a_square_is_the_similar_triangle_square() {
     let scene = load_scene(path.to_str().unwrap(), &[]).unwrap();
     let (view, surface) = visible_surface(&scene);
     let visibility =
-        lumiere::internals::shadow::compute(&scene, &view, &surface, scene.shadows.method).unwrap();
+        lumiere::shadow::compute(&scene, &view, &surface, scene.shadows.method).unwrap();
     let half_shadow = 0.5 * s * light_height / (light_height - h);
     let ground = scene
         .objects

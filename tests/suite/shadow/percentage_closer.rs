@@ -10,17 +10,15 @@
 use crate::support;
 
 use glam::{DVec2, DVec3};
-use lumiere::internals::geometry::sampling::Stream;
-use lumiere::internals::raster::View;
-use lumiere::internals::render::visible_surface;
-use lumiere::internals::scene::{Camera, Scene};
-use lumiere::internals::shadow::percentage_closer::{
-    MAX_FOOTPRINT, Region, footprint, percentage_closer,
-};
-use lumiere::internals::shadow::shadow_map::{CubeShadowMap, DepthImage, Lookup, MapPoint};
+use lumiere::geometry::sampling::Stream;
 use lumiere::load_scene;
+use lumiere::raster::View;
+use lumiere::render::visible_surface;
+use lumiere::scene::{Camera, Scene};
 use lumiere::settings::ShadowMethod;
 use lumiere::settings::{MapFilter, PercentageCloser};
+use lumiere::shadow::percentage_closer::{MAX_FOOTPRINT, Region, footprint, percentage_closer};
+use lumiere::shadow::shadow_map::{CubeShadowMap, DepthImage, Lookup, MapPoint};
 
 /// Stored depths: a texel in front of the tested point (it shadows) and one behind.
 const NEAR: f32 = 0.25;
@@ -431,8 +429,7 @@ fn strip_scene(shadows: &[&str]) -> Scene {
 /// each column: (x, mean).
 fn ground_profile(scene: &Scene) -> Vec<(f64, f64)> {
     let (view, surface) = visible_surface(scene);
-    let v = lumiere::internals::shadow::compute(scene, &view, &surface, ShadowMethod::ShadowMap)
-        .unwrap();
+    let v = lumiere::shadow::compute(scene, &view, &surface, ShadowMethod::ShadowMap).unwrap();
     let ground = scene
         .objects
         .iter()
@@ -528,19 +525,15 @@ fn footprints_antialias_like_area_sampled_ray_casting() {
     let reference = load_scene("ray-cast-shadows-curved", &fine).unwrap();
     let (_, fine_surface) = visible_surface(&reference);
     let (fine_view, _) = visible_surface(&reference);
-    let exact = lumiere::internals::shadow::compute(
-        &reference,
-        &fine_view,
-        &fine_surface,
-        ShadowMethod::RayCast,
-    )
-    .unwrap();
+    let exact =
+        lumiere::shadow::compute(&reference, &fine_view, &fine_surface, ShadowMethod::RayCast)
+            .unwrap();
     let ground = reference
         .objects
         .iter()
         .position(|o| o.name == "ground")
         .unwrap();
-    let on_ground = |s: &lumiere::internals::raster::Sample| {
+    let on_ground = |s: &lumiere::raster::Sample| {
         !s.is_empty() && reference.polygons[s.polygon as usize].object == ground
     };
     let filtered = |filter: &str| {
@@ -553,9 +546,7 @@ fn footprints_antialias_like_area_sampled_ray_casting() {
         ]);
         let scene = load_scene("ray-cast-shadows-curved", &sets).unwrap();
         let (view, surface) = visible_surface(&scene);
-        let v =
-            lumiere::internals::shadow::compute(&scene, &view, &surface, ShadowMethod::ShadowMap)
-                .unwrap();
+        let v = lumiere::shadow::compute(&scene, &view, &surface, ShadowMethod::ShadowMap).unwrap();
         (0..surface.samples.len())
             .map(|k| v.fraction(0, k) as f64)
             .collect::<Vec<f64>>()
@@ -729,7 +720,7 @@ fn a_map_position_reads_the_texel_it_falls_in() {
 /// image's centre and its edges (45° off the axis) on the image's borders.
 #[test]
 fn each_cube_face_spans_its_image_exactly() {
-    use lumiere::internals::shadow::cube_faces::{FACES, face_view};
+    use lumiere::shadow::cube_faces::{FACES, face_view};
     let scene = load_scene("shadow-map", &[]).unwrap();
     let light = DVec3::new(0.3, 2.0, -0.4);
     for resolution in [16, 64, 512] {

@@ -6,8 +6,8 @@
 use lumiere::Error;
 use lumiere::LightKind;
 use lumiere::Renderer;
-use lumiere::internals::shadow::{METHODS, method};
 use lumiere::settings::ShadowMethod;
+use lumiere::shadow::{METHODS, method};
 
 /// One light of each kind, as a scene file writes it.
 fn light(kind: LightKind) -> &'static str {

@@ -10,18 +10,18 @@
 use crate::support;
 
 use glam::{DVec2, DVec3, Vec3};
-use lumiere::internals::geometry::central_projection::onto_plane;
-use lumiere::internals::geometry::disc::area_inside;
-use lumiere::internals::geometry::sampling::Stream;
-use lumiere::internals::raster::{LightVisibility, View, Visibility, VisibleSurface};
-use lumiere::internals::render::visible_surface;
-use lumiere::internals::scene::{Light, SphereLight};
-use lumiere::internals::shading::FrameShading;
-use lumiere::internals::shadow::jittered_soft_shadows::JitteredSoftShadows;
-use lumiere::internals::shadow::shadow_volumes::ShadowVolumes;
-use lumiere::internals::shadow::soft_shadow_volumes::SoftShadowVolumes;
-use lumiere::internals::shadow::{self, LightShadows, SceneOccluders, ShadowMethod};
+use lumiere::geometry::central_projection::onto_plane;
+use lumiere::geometry::disc::area_inside;
+use lumiere::geometry::sampling::Stream;
+use lumiere::raster::{LightVisibility, View, Visibility, VisibleSurface};
+use lumiere::render::visible_surface;
+use lumiere::scene::{Light, SphereLight};
 use lumiere::settings::{CellSampling, ShadowSettings};
+use lumiere::shading::FrameShading;
+use lumiere::shadow::jittered_soft_shadows::JitteredSoftShadows;
+use lumiere::shadow::shadow_volumes::ShadowVolumes;
+use lumiere::shadow::soft_shadow_volumes::SoftShadowVolumes;
+use lumiere::shadow::{self, LightShadows, SceneOccluders, ShadowMethod};
 use lumiere::{Scene, load_scene};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -358,7 +358,7 @@ fn averaged_over_seeds_jitter_is_unbiased_behind_a_straight_edge() {
         radiance: Vec3::ONE,
         name: None,
     };
-    let plate = lumiere::internals::scene::Polygon {
+    let plate = lumiere::scene::Polygon {
         vertices: [
             DVec3::new(0.15, 5.0, -50.0),
             DVec3::new(0.15, 5.0, 50.0),
@@ -453,11 +453,11 @@ fn cap_quadrature(
     (seen, whole)
 }
 
-fn plate_occluder(corners: [DVec3; 4]) -> lumiere::internals::scene::Polygon {
+fn plate_occluder(corners: [DVec3; 4]) -> lumiere::scene::Polygon {
     let normal = (corners[1] - corners[0])
         .cross(corners[2] - corners[0])
         .normalize();
-    lumiere::internals::scene::Polygon {
+    lumiere::scene::Polygon {
         vertices: corners.map(support::vertex).to_vec(),
         normal,
         material: 0,
@@ -518,9 +518,7 @@ fn a_near_sphere_and_one_across_the_horizon_give_their_irradiance_share() {
         };
         let (seen, whole) = cap_quadrature(x, n, &light, hides, 1000, 4000);
         let exact = seen / whole;
-        let model = lumiere::internals::shading::sphere_form_factor::projected_solid_angle(
-            x, n, centre, 1.0,
-        );
+        let model = lumiere::shading::sphere_form_factor::projected_solid_angle(x, n, centre, 1.0);
         assert!(
             (model - whole).abs() < 1e-4 * whole,
             "sphere at {centre}: the light model's {model}, the cap's {whole}"

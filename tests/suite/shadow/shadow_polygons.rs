@@ -7,9 +7,9 @@ use crate::support;
 
 use glam::{DVec2, DVec3};
 use lumiere::Scene;
-use lumiere::internals::scene::ray_queries::segment_meets_polygon;
-use lumiere::internals::shadow::shadow_polygon_areas::receiver_shadows;
-use lumiere::internals::shadow::shadow_polygons::{DetailPolygon, lit_polygons};
+use lumiere::scene::ray_queries::segment_meets_polygon;
+use lumiere::shadow::shadow_polygon_areas::receiver_shadows;
+use lumiere::shadow::shadow_polygons::{DetailPolygon, lit_polygons};
 use proptest::prelude::*;
 use support::scene_from_text;
 

@@ -5,16 +5,16 @@
 //! another way: brute-force containment, Weiler–Atherton, Monte Carlo, closed forms.
 
 use glam::{DVec2, DVec3};
-use lumiere::internals::geometry::central_projection::onto_plane;
-use lumiere::internals::geometry::convex::subtract as subtract_convex;
-use lumiere::internals::geometry::convex::{hull, intersect, is_convex_ccw};
-use lumiere::internals::geometry::disc::area_inside;
-use lumiere::internals::geometry::lambert_contour::projected_solid_angle;
-use lumiere::internals::geometry::sutherland_hodgman::clip as clip_half;
-use lumiere::internals::geometry::weiler_atherton::{self as wa, contour_area};
-use lumiere::internals::shadow::jittered_soft_shadows::{cells, hexagon};
-use lumiere::internals::shadow::umbra_penumbra::visible_part_everywhere;
+use lumiere::geometry::central_projection::onto_plane;
+use lumiere::geometry::convex::subtract as subtract_convex;
+use lumiere::geometry::convex::{hull, intersect, is_convex_ccw};
+use lumiere::geometry::disc::area_inside;
+use lumiere::geometry::lambert_contour::projected_solid_angle;
+use lumiere::geometry::sutherland_hodgman::clip as clip_half;
+use lumiere::geometry::weiler_atherton::{self as wa, contour_area};
 use lumiere::load_scene;
+use lumiere::shadow::jittered_soft_shadows::{cells, hexagon};
+use lumiere::shadow::umbra_penumbra::visible_part_everywhere;
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
 
@@ -33,7 +33,7 @@ fn place(raw: &[(f64, f64)], centre: DVec2, radius: f64) -> Vec<DVec2> {
 }
 
 fn bbox_diagonal(p: &[DVec2]) -> f64 {
-    let (lo, hi) = lumiere::internals::geometry::plane::bounds(p);
+    let (lo, hi) = lumiere::geometry::plane::bounds(p);
     (hi - lo).length()
 }
 
@@ -313,7 +313,7 @@ proptest! {
                 prop_assert!(outside_by(&a, p, size) <= 1e3 && outside_by(&b, p, size) <= 1e3);
             }
         }
-        let (lo, hi) = lumiere::internals::geometry::plane::bounds(&a);
+        let (lo, hi) = lumiere::geometry::plane::bounds(&a);
         let margin = 1e-9 * size;
         let region = vec![ab.clone()];
         for &(u, v) in &samples {
@@ -344,7 +344,7 @@ proptest! {
     ) {
         let centre = DVec2::new(cx, cy);
         let exact = area_inside(&polygon, centre, r);
-        let (lo, hi) = lumiere::internals::geometry::plane::bounds(&polygon);
+        let (lo, hi) = lumiere::geometry::plane::bounds(&polygon);
         let boxed = (hi - lo).x * (hi - lo).y;
         let n = 16384;
         let mut rng = SplitMix(0x5eed);
@@ -380,7 +380,7 @@ proptest! {
         let whole = area_inside(&polygon, centre, r);
         let disc = PI * r * r;
         // Additivity across a line through a point of the polygon's box.
-        let (lo, hi) = lumiere::internals::geometry::plane::bounds(&polygon);
+        let (lo, hi) = lumiere::geometry::plane::bounds(&polygon);
         let q = lo + (hi - lo) * DVec2::new(qu, qv);
         let normal = DVec2::from_angle(angle);
         let left = clip_half(&polygon, |p| normal.dot(*p - q));

@@ -6,8 +6,8 @@
 //! contour formula on it.
 
 use glam::DVec3;
-use lumiere::internals::geometry::lambert_contour::projected_solid_angle;
-use lumiere::internals::render::visible_surface;
+use lumiere::geometry::lambert_contour::projected_solid_angle;
+use lumiere::render::visible_surface;
 use lumiere::settings::ShadowMethod;
 
 const SCENE: &str = r#"
@@ -102,8 +102,7 @@ fn errors(samples: u32) -> (f64, f64, usize) {
     let (scene, floor) = soft_scene(samples);
     let (view, surface) = visible_surface(&scene);
     let visibility =
-        lumiere::internals::shadow::compute(&scene, &view, &surface, ShadowMethod::RayCast)
-            .unwrap();
+        lumiere::shadow::compute(&scene, &view, &surface, ShadowMethod::RayCast).unwrap();
     let (mut sum, mut count, mut outside) = (0.0, 0, 0.0f64);
     for (k, s) in surface.samples.iter().enumerate() {
         if s.is_empty() || scene.polygons[s.polygon as usize].object != floor {
@@ -150,8 +149,8 @@ fn the_sampled_penumbra_converges_to_the_exact_one() {
 /// unshadowed radiance times the visible share of Lambert's contour integral.
 #[test]
 fn the_visible_part_of_an_emitter_shades_exactly() {
-    use lumiere::internals::raster::{LightVisibility, Visibility, VisiblePart};
-    use lumiere::internals::shading::FrameShading;
+    use lumiere::raster::{LightVisibility, Visibility, VisiblePart};
+    use lumiere::shading::FrameShading;
     let (scene, floor) = soft_scene(4);
     let (view, surface) = visible_surface(&scene);
     let on_floor = |k: usize| {
@@ -195,8 +194,8 @@ fn the_visible_part_of_an_emitter_shades_exactly() {
 /// (which called it fully lit).
 #[test]
 fn a_point_the_light_cannot_shine_on_gets_nothing() {
-    use lumiere::internals::image_io::BufferData;
-    use lumiere::internals::render::Renderer;
+    use lumiere::image_io::BufferData;
+    use lumiere::render::Renderer;
     let text = "[camera]\neye = [0.0, 1.0, 4.0]\nlook_at = [0.0, 2.5, 0.0]\nfov_y = 60.0\nwidth = 24\nheight = 24\n\
         [shadows]\nmethod = \"soft-shadow-volumes\"\nlight_points = 4\n\
         [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n[materials.lamp]\nemission = [5.0, 5.0, 5.0]\n\

@@ -10,13 +10,13 @@ use crate::support;
 
 use glam::DVec3;
 use lumiere::Light;
-use lumiere::internals::geometry::lambert_contour::projected_solid_angle;
-use lumiere::internals::raster::{LightVisibility, View, VisiblePart, VisibleSurface};
-use lumiere::internals::render::visible_surface;
-use lumiere::internals::shadow::umbra_penumbra::{
+use lumiere::geometry::lambert_contour::projected_solid_angle;
+use lumiere::raster::{LightVisibility, View, VisiblePart, VisibleSurface};
+use lumiere::render::visible_surface;
+use lumiere::shadow::umbra_penumbra::{
     LIT, PENUMBRA, UMBRA, UmbraPenumbra, visible_part_everywhere,
 };
-use lumiere::internals::shadow::{self, ShadowMethod};
+use lumiere::shadow::{self, ShadowMethod};
 use lumiere::{Scene, load_scene};
 
 /// Light 0's visibility and the method's counts buffer on the whole frame.
@@ -214,13 +214,9 @@ fn no_occluder_leaves_lambert_and_a_half_plate_exactly_half() {
     // Nothing in the way: every sample sees the whole light, so shading takes
     // Lambert's integral over the light itself.
     assert!(parts.iter().all(Option::is_none));
-    let shading = lumiere::internals::shading::FrameShading::new(&open, &view, vec![true]);
-    let lit = shading.shade_band(
-        &surface,
-        &lumiere::internals::raster::Visibility::none(),
-        &[],
-    );
-    let exact_parts = lumiere::internals::raster::Visibility {
+    let shading = lumiere::shading::FrameShading::new(&open, &view, vec![true]);
+    let lit = shading.shade_band(&surface, &lumiere::raster::Visibility::none(), &[]);
+    let exact_parts = lumiere::raster::Visibility {
         per_light: vec![Some(LightVisibility::Emitter(parts))],
     };
     assert_eq!(shading.shade_band(&surface, &exact_parts, &[]), lit);
@@ -381,10 +377,10 @@ fn visible_through_plus_x(p: DVec3) -> (f64, f64) {
 fn a_receiver_cutting_the_light_is_shaded_from_the_side_the_eye_sees() {
     let scene = support::scene_from_text(CUT_LIGHT_SCENE, &[]);
     let (view, surface, visibility, _) = band_of(&scene, ShadowMethod::UmbraPenumbra);
-    let shading = lumiere::internals::shading::FrameShading::new(&scene, &view, vec![true]);
+    let shading = lumiere::shading::FrameShading::new(&scene, &view, vec![true]);
     let shaded = shading.shade_band(
         &surface,
-        &lumiere::internals::raster::Visibility {
+        &lumiere::raster::Visibility {
             per_light: vec![Some(visibility.clone())],
         },
         &[],

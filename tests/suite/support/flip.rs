@@ -2,7 +2,7 @@
 //! (bindings to the C++ FLIP): the perceptual difference the Mitsuba comparisons
 //! report (tools/mitsuba_reference.py, flip-evaluator's LDR mode).
 
-use lumiere::internals::image_io::{Image, srgb_encode};
+use lumiere::image_io::{Image, srgb_encode};
 
 /// flip-evaluator's default viewing: 0.7 m from a 0.7 m wide, 3840-pixel monitor
 /// (67.0206; nv-flip's own default is a rounded 67.0).
@@ -50,7 +50,7 @@ pub fn magma(reference: &Image, test: &Image) -> Image {
             .to_vec()
             .chunks_exact(3)
             .map(|c| {
-                let linear = |v: u8| lumiere::internals::image_io::srgb_decode(v as f32 / 255.0);
+                let linear = |v: u8| lumiere::image_io::srgb_decode(v as f32 / 255.0);
                 glam::Vec3::new(linear(c[0]), linear(c[1]), linear(c[2]))
             })
             .collect(),

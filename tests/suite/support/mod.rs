@@ -9,8 +9,8 @@ pub mod peers;
 pub use binary::*;
 
 use glam::{DVec2, DVec3};
-use lumiere::internals::raster::{ScreenPolygon, View};
-use lumiere::internals::scene::{Camera, Vertex};
+use lumiere::raster::{ScreenPolygon, View};
+use lumiere::scene::{Camera, Vertex};
 
 /// A camera at the origin looking down −z: world (x, y, −d) is eye (x, y, d).
 pub fn origin_view(width: u32, height: u32) -> View {
@@ -66,7 +66,7 @@ pub fn render(scene: &lumiere::Scene) -> lumiere::Image {
 
 /// Files held in memory, as a scene's directory.
 #[allow(unused_imports)]
-pub use lumiere::internals::scene::resources::InMemory as Files;
+pub use lumiere::scene::resources::InMemory as Files;
 
 /// A scene written to a temporary file and loaded from it, with `--set` overrides
 /// (the path a scene file takes, with its relative paths and messages).

@@ -9,14 +9,14 @@
 use crate::support;
 
 use glam::{DVec2, DVec3, Vec3};
-use lumiere::internals::raster::View;
-use lumiere::internals::shading::optics::{reflect, refract, schlick};
-use lumiere::internals::texture::environment::cube_map::{self, FACE_NAMES};
-use lumiere::internals::texture::environment::sky::ProceduralEnvironment;
-use lumiere::internals::texture::environment::{
+use lumiere::raster::View;
+use lumiere::shading::optics::{reflect, refract, schlick};
+use lumiere::texture::environment::cube_map::{self, FACE_NAMES};
+use lumiere::texture::environment::sky::ProceduralEnvironment;
+use lumiere::texture::environment::{
     EnvironmentMap, Layout, coordinates, lat_long, sphere_map, texel_direction,
 };
-use lumiere::internals::texture::{Filter, Texels};
+use lumiere::texture::{Filter, Texels};
 use lumiere::{Scene, load_scene};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
@@ -797,7 +797,7 @@ fn an_index_matched_refractor_shows_the_backdrop_straight_through() {
             lumiere::render(&without).unwrap(),
         );
         let view = View::new(&with.camera, a.width, a.height);
-        let (_, surface) = lumiere::internals::render::visible_surface(&with);
+        let (_, surface) = lumiere::render::visible_surface(&with);
         let mut covered = 0;
         for y in 0..a.height {
             for x in 0..a.width {
@@ -865,7 +865,7 @@ fn a_glass_quad_blends_reflection_and_refraction_by_schlick() {
         let scene = scene(&glass_quad(back));
         let image = lumiere::render(&scene).unwrap();
         let view = View::new(&scene.camera, image.width, image.height);
-        let (_, surface) = lumiere::internals::render::visible_surface(&scene);
+        let (_, surface) = lumiere::render::visible_surface(&scene);
         let plane = &scene.polygons[0];
         let (mut covered, mut total_reflection) = (0, 0);
         for y in 0..image.height {

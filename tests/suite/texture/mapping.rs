@@ -4,15 +4,15 @@
 //! normals against the normals of the truly displaced surface.
 
 use glam::{DVec2, DVec3, Vec3};
-use lumiere::internals::geometry::sampling::Stream;
-use lumiere::internals::raster::View;
-use lumiere::internals::render::visible_surface;
-use lumiere::internals::scene::resources::Directory;
-use lumiere::internals::scene::{Scene, scene_from_table, tables};
-use lumiere::internals::texture::bump::perturb;
-use lumiere::internals::texture::mapping::{Frame, IntermediateSurface, Mapping, Projector};
-use lumiere::internals::texture::mip_map::Pyramid;
-use lumiere::internals::texture::{Filter, Texels, Texture, Wrap};
+use lumiere::geometry::sampling::Stream;
+use lumiere::raster::View;
+use lumiere::render::visible_surface;
+use lumiere::scene::resources::Directory;
+use lumiere::scene::{Scene, scene_from_table, tables};
+use lumiere::texture::bump::perturb;
+use lumiere::texture::mapping::{Frame, IntermediateSurface, Mapping, Projector};
+use lumiere::texture::mip_map::Pyramid;
+use lumiere::texture::{Filter, Texels, Texture, Wrap};
 use lumiere::{Image, catalogue, load_scene, render};
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
@@ -803,7 +803,7 @@ fn the_box_mapping_reproduces_the_boxs_own_coordinates() {
 /// vertices: between their least and greatest u, never outside (the course's pinching).
 #[test]
 fn a_pole_vertex_takes_the_mean_u_of_the_others() {
-    use lumiere::internals::texture::mapping::fix_seam;
+    use lumiere::texture::mapping::fix_seam;
     for (others, expected) in [
         (vec![0.5, 0.55], 0.525),
         (vec![0.2, 0.3, 0.4], 0.3),
@@ -828,7 +828,7 @@ fn a_pole_vertex_takes_the_mean_u_of_the_others() {
 /// gradient): straight up it is the deep blue, just above the horizon nearly white.
 #[test]
 fn the_sky_is_blue_overhead_and_pale_at_the_horizon() {
-    use lumiere::internals::texture::environment::sky::ProceduralEnvironment;
+    use lumiere::texture::environment::sky::ProceduralEnvironment;
     // Away from the sun (up and to the left of −z): towards +x.
     let up = ProceduralEnvironment::Sky.radiance(DVec3::Y);
     let low = ProceduralEnvironment::Sky.radiance(DVec3::new(1.0, 1e-4, 0.0));
@@ -870,7 +870,7 @@ fn eight_bit_texels_are_their_bytes_over_255_decoded_from_srgb() {
 /// the sun.
 #[test]
 fn the_suns_glow_is_a_cos64_lobe() {
-    use lumiere::internals::texture::environment::sky::ProceduralEnvironment;
+    use lumiere::texture::environment::sky::ProceduralEnvironment;
     let sun = DVec3::new(-0.45, 0.6, -0.66).normalize();
     let turn = |degrees: f64| {
         let (s, c) = degrees.to_radians().sin_cos();

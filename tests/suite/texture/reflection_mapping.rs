@@ -9,10 +9,10 @@ use crate::support;
 
 use glam::{DVec3, Vec3};
 use lumiere::Scene;
-use lumiere::internals::raster::sample_view;
-use lumiere::internals::render::{Renderer, capture};
-use lumiere::internals::scene::ray_queries::SceneRays;
-use lumiere::internals::shading::radiance_at;
+use lumiere::raster::sample_view;
+use lumiere::render::{Renderer, capture};
+use lumiere::scene::ray_queries::SceneRays;
+use lumiere::shading::radiance_at;
 use support::scene_from_text;
 
 /// A room of half-size `half` around a unit mirror ball at the origin: each wall a
