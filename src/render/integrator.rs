@@ -6,8 +6,6 @@
 //! - `Radiosity`: a view-independent diffuse solution (`radiosity`) drawn through
 //!   its elements, Gouraud-shaded as B/π, with textures modulating the reflected part
 //!   and the lights the solution does not hold (point, spot, distant, sphere) added
-//!   directly with their shadows.
-//!
 //!   directly with their shadows; with the two-pass methods' second pass (rays off
 //!   specular surfaces reading the solution) when `[global]` asks for one;
 //! - `Whitted`: recursive ray tracing (`global::whitted`), which makes its frame
