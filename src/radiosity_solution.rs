@@ -66,6 +66,12 @@ pub fn element_count(scene: &Scene, settings: &RadiositySettings) -> u64 {
     Mesh::count(scene, settings.patches, settings.elements).elements
 }
 
+/// How many elements `scene`'s mesh for `settings` has once built (what a solve
+/// starts from), without preparing any form-factor estimate.
+pub fn meshed_element_count(scene: &Scene, settings: &RadiositySettings) -> Result<usize> {
+    Ok(radiosity::mesh(scene, settings)?.elements.len())
+}
+
 /// Gathering watched converging: Gauss–Seidel on the patch-to-patch matrix of
 /// `settings`'s mesh in colour band `band` (0 red, 1 green, 2 blue), the residual
 /// power Σ_i A_i |E_i + ρ_i Σ_j F_ij B_j − B_i| after each sweep as a share of the

@@ -5,7 +5,7 @@ use super::timing::median;
 use anyhow::{Result, bail};
 use lumiere::Scene;
 use lumiere::load_scene;
-use lumiere::radiosity_solution::SolverTrial;
+use lumiere::radiosity_solution::{self, SolverTrial};
 use lumiere::settings::Division;
 
 /// Times, for each wanted element count, shooting to the scene's unshot fraction and
@@ -54,9 +54,10 @@ fn with_element_count(base: &Scene, count: usize) -> Result<Scene> {
     let mut count_at = |size: f64| -> Result<(usize, Scene)> {
         let settings = scene.radiosity.as_mut().expect("checked by the caller");
         settings.elements = Division::Size(size);
-        let n = SolverTrial::prepare(&scene, scene.radiosity.as_ref().expect("set"))?
-            .size()
-            .1;
+        let n = radiosity_solution::meshed_element_count(
+            &scene,
+            scene.radiosity.as_ref().expect("set"),
+        )?;
         Ok((n, scene.clone()))
     };
     let (mut small, mut large) = (1.0_f64, 1000.0_f64);
