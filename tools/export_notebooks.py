@@ -7,14 +7,10 @@ Called by tools/build-notebooks.sh, in its environment:
     python export_notebooks.py OUT_DIR NOTEBOOK.ipynb...
 """
 import base64, html, os, re, sys, tempfile, time
-from queue import Empty
 import jinja2, nbclient, nbformat
-from jupyter_client.asynchronous import AsyncKernelClient
-from jupyter_client.channels import AsyncZMQSocketChannel
-from jupyter_client.manager import AsyncKernelManager
 from nbclient.exceptions import CellExecutionError
 from nbconvert import HTMLExporter
-from traitlets import Type, default
+from patient_kernel import PatientKernelManager
 
 TIMEOUT = 600  # seconds for one cell; the slowest notebook takes under a minute in all
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
@@ -34,38 +30,6 @@ TEMPLATE = r"""{%- extends 'lab/index.html.j2' -%}
 </style>
 {%- endblock extra_css -%}
 """
-
-
-class PatientChannel(AsyncZMQSocketChannel):
-    """Waits for a message one second at a time.
-
-    nbclient sends on the shell socket (the Output widget's state) while it awaits the
-    reply on it, and zmq.asyncio then sometimes misses the reply's wake-up: both sides
-    sat idle until the cell's timeout, on the widget's cell, in about one run of the
-    course in three (ipykernel 6 and 7, pyzmq 26 and 27). Each new wait looks at the
-    socket itself, so a reply that came in unannounced is read within a second."""
-
-    async def get_msg(self, timeout=None):
-        deadline = None if timeout is None else time.monotonic() + timeout
-        while True:
-            left = None if deadline is None else max(0.0, deadline - time.monotonic())
-            try:
-                return await super().get_msg(timeout=1.0 if left is None else min(1.0, left))
-            except Empty:
-                if left is not None and left <= 1.0:
-                    raise
-
-
-class PatientClient(AsyncKernelClient):
-    shell_channel_class = Type(PatientChannel)
-    iopub_channel_class = Type(PatientChannel)
-    control_channel_class = Type(PatientChannel)
-
-
-class PatientKernelManager(AsyncKernelManager):
-    @default("client_factory")
-    def _patient_client(self):
-        return PatientClient
 
 
 def control_text(state):

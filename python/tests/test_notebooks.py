@@ -20,7 +20,11 @@ nbclient = pytest.importorskip("nbclient")
 pytest.importorskip("ipywidgets")
 pytest.importorskip("ipykernel")
 
-NOTEBOOKS = pathlib.Path(__file__).resolve().parent.parent.parent / "notebooks"
+ROOT = pathlib.Path(__file__).resolve().parent.parent.parent
+NOTEBOOKS = ROOT / "notebooks"
+# The kernel manager whose client does not miss a reply's wake-up (see its module).
+sys.path.insert(0, str(ROOT / "tools"))
+from patient_kernel import PatientKernelManager  # noqa: E402
 
 # The variable each notebook sets to True in the cell that asserts its central promise.
 PROOF = {
@@ -80,7 +84,11 @@ def test_notebook_runs(path, tmp_path):
     assert nb.cells[0].source.splitlines()[0] == "import lumiere, numpy as np, matplotlib.pyplot as plt"
     nb.cells.append(nbformat.v4.new_code_cell(POKE.replace("{proof}", PROOF[path.name])))
     client = nbclient.NotebookClient(
-        nb, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(tmp_path)}}
+        nb,
+        timeout=600,
+        kernel_name="python3",
+        kernel_manager_class=PatientKernelManager,
+        resources={"metadata": {"path": str(tmp_path)}},
     )
     start = time.perf_counter()
     client.execute()  # raises CellExecutionError on any failing cell, the appended one included

@@ -77,7 +77,8 @@ fn the_wheel_installs_into_a_clean_environment_and_its_tests_and_notebooks_pass(
                 "pytest",
                 "nbclient",
                 "nbformat",
-                "ipykernel",
+                // As tools/build-notebooks.sh pins it (ipython/ipykernel#1554).
+                "ipykernel>=6.29,<7",
                 "matplotlib",
                 "ipywidgets",
             ]),
