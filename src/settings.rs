@@ -391,6 +391,24 @@ impl GlobalMethod {
         }
     }
 
+    /// Whether the method antialiases its frame itself (Whitted's adaptive
+    /// subdivision), so that `render.supersample` must stay 1.
+    pub fn antialiases_itself(self) -> bool {
+        match self {
+            GlobalMethod::RayTracing => true,
+            GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance => false,
+        }
+    }
+
+    /// Whether the method gathers a glossy mirror's reflection (the two-pass
+    /// methods' reflection frustum), so that a material's `gloss` is read.
+    pub fn reads_gloss(self) -> bool {
+        match self {
+            GlobalMethod::RayTracing => false,
+            GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance => true,
+        }
+    }
+
     /// The name the scene file uses.
     pub fn name(self) -> &'static str {
         match self {
@@ -474,6 +492,9 @@ pub struct GlobalSettings {
     /// Pass 2: the indirect light gathered from the solution at every visible
     /// point instead of read from the mesh (`None`: read from the mesh).
     pub final_gather: Option<FinalGatherSettings>,
+    /// The keys the scene file set besides `method` (`global.depth`, ...): the
+    /// renderer refuses those its integrator does not read.
+    pub keys_set: Vec<&'static str>,
 }
 
 /// The final gather over a radiosity solution (`[global.final_gather]`).

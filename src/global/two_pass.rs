@@ -37,46 +37,13 @@ use super::local::{diffuse_texture_scale, lights_at, reflectance_at};
 use super::reflection_frustum::ReflectionFrustum;
 use super::solution_radiance::SolutionRadiance;
 use super::traced_scene::{Leaving, TracedScene};
-use crate::error::{Error, Result};
 use crate::geometry::sampling::Stream;
 use crate::radiosity::Solution;
 use crate::scene::Scene;
-use crate::settings::{GlobalMethod, GlobalSettings};
+use crate::settings::GlobalSettings;
 use glam::{DVec3, Vec3};
 use std::f64::consts::TAU;
 use std::sync::Arc;
-
-/// Refuses materials a method's first pass cannot carry: two-pass follows planar
-/// mirrors only; Rushmeier & Torrance's panes are thin (no index of refraction).
-pub fn check(scene: &Scene, method: GlobalMethod) -> Result<()> {
-    for m in &scene.materials {
-        let transmits = m.transmittance.max_element() > 0.0 || m.translucence.max_element() > 0.0;
-        match method {
-            GlobalMethod::TwoPass if transmits => {
-                return Err(Error::invalid(
-                    format!("materials.{}", m.name),
-                    format!(
-                        "materials.{}: the two-pass method (Wallace et al. 1987) follows mirrors; transmission (transmittance, translucence) is Rushmeier & Torrance's: set global.method = \"rushmeier-torrance\"",
-                        m.name
-                    ),
-                ));
-            }
-            GlobalMethod::RushmeierTorrance
-                if m.transmittance.max_element() > 0.0 && m.ior.is_some() =>
-            {
-                return Err(Error::invalid(
-                    format!("materials.{}.ior", m.name),
-                    format!(
-                        "materials.{}.ior: Rushmeier & Torrance's panes are thin (light goes straight through): leave ior out",
-                        m.name
-                    ),
-                ));
-            }
-            GlobalMethod::RayTracing | GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance => {}
-        }
-    }
-    Ok(())
-}
 
 /// The second pass over one solution.
 pub struct SecondPass {

@@ -3,23 +3,15 @@
 //! size (the image's times the supersampling), assembled band by band; the others
 //! (shadow-map faces, hemi-cube item buffers) at their own size.
 
-use super::integrator::Integrator;
+use super::integrators::{CACHE_RECORDS, ScanLine, declares_buffer};
 use super::plan::FramePlan;
 use crate::error::{Error, Result};
-use crate::image_io::{Buffer, BufferData, NO_ID};
-use crate::radiosity::hemicube::{BACK, Hemicube};
-use crate::radiosity::receivers::Receivers;
-use crate::raster::{NO_POLYGON, Visibility, VisibleSurface};
+use crate::image_io::{Buffer, BufferData};
+use crate::raster::{Visibility, VisibleSurface};
 use crate::scene::{Light, Scene};
 use crate::settings::MediumMethod;
 use crate::shading::FrameShading;
 use crate::shadow::{self, CountBuffer};
-
-/// The buffer a ray-traced frame gives, and what it holds.
-pub const RAYS: (&str, &str) = (
-    "rays",
-    "rays traced per pixel (eye, reflected and refracted; colour-mapped): where Whitted's adaptive subdivision split the pixel, and how deep its trees went",
-);
 
 /// A buffer a scene's frame can give, and what it holds.
 #[derive(Clone, Debug, PartialEq)]
@@ -119,7 +111,6 @@ impl Kind {
 /// Every buffer a scan-line frame of `scene` by `plan` can give, with the
 /// per-sample kinds first.
 fn catalogue(scene: &Scene, plan: &FramePlan) -> (Vec<Kind>, Vec<Buffer>) {
-    let integrator = &plan.integrator;
     let mut kinds = vec![
         Kind::Polygon,
         Kind::Depth,
@@ -127,8 +118,10 @@ fn catalogue(scene: &Scene, plan: &FramePlan) -> (Vec<Kind>, Vec<Buffer>) {
         Kind::Normal,
         Kind::Uv,
     ];
-    if matches!(integrator, Integrator::Radiosity(..)) {
-        kinds.extend([Kind::Element, Kind::Radiosity]);
+    for (kind, name) in [(Kind::Element, "element"), (Kind::Radiosity, "radiosity")] {
+        if declares_buffer(plan.declared, name) {
+            kinds.push(kind);
+        }
     }
     if scene
         .textures
@@ -161,78 +154,9 @@ fn catalogue(scene: &Scene, plan: &FramePlan) -> (Vec<Kind>, Vec<Buffer>) {
             }
         }
     }
-    if let Integrator::Radiosity(_, _, Some(gather)) = integrator {
-        fixed.push(cache_records(scene, &gather.cache));
-    }
-    if let Integrator::Radiosity(solution, ..) = integrator {
-        fixed.extend(hemicube_buffers(
-            scene,
-            plan.hemicube_element,
-            &solution.mesh,
-        ));
-    }
+    fixed.extend(plan.integrator.buffers(scene, plan.hemicube_element));
     (kinds, fixed)
 }
-
-/// The item buffers of the hemi-cube at the centre of the chosen `element`,
-/// looking at the patches (ids are patch indices): what gathering sees from there.
-fn hemicube_buffers(scene: &Scene, element: usize, mesh: &crate::radiosity::Mesh) -> Vec<Buffer> {
-    let Some(settings) = &scene.radiosity else {
-        return Vec::new();
-    };
-    let Some(element) = mesh.elements.get(element) else {
-        return Vec::new();
-    };
-    let patch = &mesh.patches[element.patch];
-    let receivers = Receivers::patches(mesh);
-    let own = element.patch;
-    Hemicube::new(settings.resolution)
-        .faces(element.centre, patch.normal, &receivers, &|r| r == own)
-        .into_iter()
-        .map(|(face, width, height, ids)| Buffer {
-            name: format!("hemicube-{face}"),
-            width,
-            height,
-            data: BufferData::Ids(
-                ids.into_iter()
-                    .map(|i| {
-                        if i == NO_POLYGON || i == BACK {
-                            NO_ID
-                        } else {
-                            i
-                        }
-                    })
-                    .collect(),
-            ),
-        })
-        .collect()
-}
-
-/// Where the irradiance cache's records were gathered: per pixel of the image, the
-/// number of records made at its centre (Ward's sparse gathers, denser near
-/// surfaces that meet).
-fn cache_records(
-    scene: &Scene,
-    cache: &crate::global::irradiance_cache::IrradianceCache,
-) -> Buffer {
-    let (width, height) = (scene.camera.width, scene.camera.height);
-    let mut counts = vec![0; width as usize * height as usize];
-    for r in &cache.records {
-        let (x, y) = r.pixel;
-        if x < width && y < height {
-            counts[y as usize * width as usize + x as usize] += 1;
-        }
-    }
-    Buffer {
-        name: CACHE_RECORDS.into(),
-        width,
-        height,
-        data: BufferData::Counts(counts),
-    }
-}
-
-/// The name of the irradiance cache's buffer.
-const CACHE_RECORDS: &str = "irradiance-cache";
 
 /// What a fixed buffer is, for `--aov list`.
 fn fixed_description(name: &str) -> String {
@@ -248,15 +172,8 @@ fn fixed_description(name: &str) -> String {
     }
 }
 
-/// The buffers a frame of `scene` by `plan` can give.
+/// The buffers a scan-line frame of `scene` by `plan` can give.
 pub(super) fn available(scene: &Scene, plan: &FramePlan) -> Vec<BufferInfo> {
-    if let Integrator::Whitted(..) = plan.integrator {
-        let (name, description) = RAYS;
-        return vec![BufferInfo {
-            name: name.into(),
-            description: description.into(),
-        }];
-    }
     let (kinds, fixed) = catalogue(scene, plan);
     kinds
         .into_iter()
@@ -283,8 +200,17 @@ pub(super) struct MediumBand {
 pub(super) struct FrameBuffers {
     width: u32,
     height: u32,
-    kinds: Vec<(Kind, BufferData)>,
+    columns: Vec<(Kind, Column)>,
     fixed: Vec<Buffer>,
+}
+
+/// A per-sample buffer's data as the bands add it: each kind fills the vector of
+/// its type, which `finish` hands over (so that no kind can meet the wrong data).
+#[derive(Default)]
+struct Column {
+    ids: Vec<u32>,
+    counts: Vec<i32>,
+    values: Vec<f32>,
 }
 
 impl FrameBuffers {
@@ -294,7 +220,7 @@ impl FrameBuffers {
         let mut frame = FrameBuffers {
             width: scene.camera.width * n,
             height: scene.camera.height * n,
-            kinds: Vec::new(),
+            columns: Vec::new(),
             fixed: Vec::new(),
         };
         if wanted.is_empty() {
@@ -303,23 +229,7 @@ impl FrameBuffers {
         let (kinds, fixed) = catalogue(scene, plan);
         for name in wanted {
             if let Some(&kind) = kinds.iter().find(|k| &k.name() == name) {
-                let data = match kind {
-                    Kind::Polygon | Kind::Element => BufferData::Ids(Vec::new()),
-                    Kind::Counts(..) | Kind::LitIntervals(_) => BufferData::Counts(Vec::new()),
-                    Kind::Depth
-                    | Kind::Position
-                    | Kind::Normal
-                    | Kind::Uv
-                    | Kind::Visibility(_)
-                    | Kind::MipLevel
-                    | Kind::EnvironmentLevel
-                    | Kind::Radiosity
-                    | Kind::Inscattered => BufferData::Values {
-                        channels: kind.channels(),
-                        data: Vec::new(),
-                    },
-                };
-                frame.kinds.push((kind, data));
+                frame.columns.push((kind, Column::default()));
             } else if let Some(b) = fixed.iter().find(|b| &b.name == name) {
                 frame.fixed.push(b.clone());
             } else {
@@ -343,87 +253,105 @@ impl FrameBuffers {
         visibility: &Visibility,
         counts: &[Option<Vec<i32>>],
         medium: &MediumBand,
-        integrator: &Integrator,
+        integrator: &dyn ScanLine,
         shading: &FrameShading,
     ) {
         let scene = shading.scene();
-        for (kind, data) in &mut self.kinds {
-            let samples = band.samples.iter().enumerate();
-            match (kind, data) {
-                (Kind::Polygon, BufferData::Ids(ids)) => {
-                    ids.extend(band.samples.iter().map(|s| s.polygon))
-                }
-                (Kind::Element, BufferData::Ids(ids)) => {
-                    ids.extend(band.samples.iter().map(|s| s.element))
-                }
-                (Kind::Counts(l, _), BufferData::Counts(c)) => match &counts[*l] {
-                    Some(found) => c.extend(found),
-                    None => c.extend(std::iter::repeat_n(0, band.samples.len())),
+        let samples = || band.samples.iter().enumerate();
+        let n = band.samples.len();
+        for (kind, column) in &mut self.columns {
+            let Column {
+                ids,
+                counts: counted,
+                values,
+            } = column;
+            match *kind {
+                Kind::Polygon => ids.extend(band.samples.iter().map(|s| s.polygon)),
+                Kind::Element => ids.extend(band.samples.iter().map(|s| s.element)),
+                Kind::Counts(l, _) => match &counts[l] {
+                    Some(found) => counted.extend(found),
+                    None => counted.extend(std::iter::repeat_n(0, n)),
                 },
-                (Kind::LitIntervals(l), BufferData::Counts(c)) => {
-                    match medium.lit.get(*l).and_then(Option::as_ref) {
-                        Some(lit) => c.extend((0..lit.len()).map(|k| lit.of(k).len() as i32)),
-                        None => c.extend(std::iter::repeat_n(0, band.samples.len())),
-                    }
+                Kind::LitIntervals(l) => match medium.lit.get(l).and_then(Option::as_ref) {
+                    Some(lit) => counted.extend((0..lit.len()).map(|k| lit.of(k).len() as i32)),
+                    None => counted.extend(std::iter::repeat_n(0, n)),
+                },
+                Kind::Depth => values.extend(
+                    band.samples
+                        .iter()
+                        .map(|s| if s.is_empty() { 0.0 } else { s.depth as f32 }),
+                ),
+                Kind::Position => values.extend(
+                    band.samples
+                        .iter()
+                        .flat_map(|s| s.position.as_vec3().to_array()),
+                ),
+                Kind::Normal => {
+                    values.extend(band.samples.iter().flat_map(|s| s.normal.to_array()))
                 }
-                (kind, BufferData::Values { data, .. }) => {
-                    for (k, s) in samples {
-                        let empty = s.is_empty();
-                        match *kind {
-                            Kind::Depth => data.push(if empty { 0.0 } else { s.depth as f32 }),
-                            Kind::Position => data.extend(s.position.as_vec3().to_array()),
-                            Kind::Normal => data.extend(s.normal.to_array()),
-                            Kind::Uv => data.extend([s.uv.x as f32, s.uv.y as f32, 0.0]),
-                            Kind::Visibility(l) => data.push(if empty {
-                                0.0
-                            } else {
-                                visibility.fraction(l, k)
-                            }),
-                            Kind::MipLevel => data.push(mip_level(scene, band, k)),
-                            Kind::EnvironmentLevel => data.push(
-                                shading
-                                    .environment_level(band, k)
-                                    .map_or(-1.0, |l| l as f32),
-                            ),
-                            Kind::Inscattered => data.extend(
-                                medium
-                                    .inscattered
-                                    .get(k)
-                                    .copied()
-                                    .unwrap_or_default()
-                                    .to_array(),
-                            ),
-                            Kind::Radiosity => data.extend(match integrator {
-                                Integrator::Radiosity(solution, ..) if !empty => {
-                                    solution.elements[s.element as usize].to_array()
-                                }
-                                Integrator::Direct
-                                | Integrator::Radiosity(..)
-                                | Integrator::Whitted(..) => [0.0; 3],
-                            }),
-                            Kind::Polygon
-                            | Kind::Element
-                            | Kind::Counts(..)
-                            | Kind::LitIntervals(_) => {
-                                unreachable!("ids and counts are matched above")
-                            }
-                        }
+                Kind::Uv => values.extend(
+                    band.samples
+                        .iter()
+                        .flat_map(|s| [s.uv.x as f32, s.uv.y as f32, 0.0]),
+                ),
+                Kind::Visibility(l) => values.extend(samples().map(|(k, s)| {
+                    if s.is_empty() {
+                        0.0
+                    } else {
+                        visibility.fraction(l, k)
                     }
-                }
-                _ => unreachable!("each kind is made with its own data"),
+                })),
+                Kind::MipLevel => values.extend((0..n).map(|k| mip_level(scene, band, k))),
+                Kind::EnvironmentLevel => values.extend((0..n).map(|k| {
+                    shading
+                        .environment_level(band, k)
+                        .map_or(-1.0, |l| l as f32)
+                })),
+                Kind::Inscattered => values.extend((0..n).flat_map(|k| {
+                    medium
+                        .inscattered
+                        .get(k)
+                        .copied()
+                        .unwrap_or_default()
+                        .to_array()
+                })),
+                Kind::Radiosity => values.extend(band.samples.iter().flat_map(|s| {
+                    match s.is_empty() {
+                        true => [0.0; 3],
+                        false => integrator
+                            .element_radiosity(s.element)
+                            .unwrap_or_default()
+                            .to_array(),
+                    }
+                })),
             }
         }
     }
 
     pub fn finish(self) -> Vec<Buffer> {
         let (width, height) = (self.width, self.height);
-        self.kinds
+        self.columns
             .into_iter()
-            .map(|(kind, data)| Buffer {
+            .map(|(kind, column)| Buffer {
                 name: kind.name(),
                 width,
                 height,
-                data,
+                data: match kind {
+                    Kind::Polygon | Kind::Element => BufferData::Ids(column.ids),
+                    Kind::Counts(..) | Kind::LitIntervals(_) => BufferData::Counts(column.counts),
+                    Kind::Depth
+                    | Kind::Position
+                    | Kind::Normal
+                    | Kind::Uv
+                    | Kind::Visibility(_)
+                    | Kind::MipLevel
+                    | Kind::EnvironmentLevel
+                    | Kind::Radiosity
+                    | Kind::Inscattered => BufferData::Values {
+                        channels: kind.channels(),
+                        data: column.values,
+                    },
+                },
             })
             .chain(self.fixed)
             .collect()

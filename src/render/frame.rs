@@ -71,7 +71,7 @@ pub(super) fn render_pass(
     wanted: &[String],
     pass: Pass,
 ) -> Result<Frame> {
-    let integrator = &plan.integrator;
+    let integrator = plan.integrator.as_ref();
     let direct = &plan.direct;
     let shadows = &plan.shadows;
     let mut buffers = FrameBuffers::new(scene, plan, wanted)?;
@@ -97,7 +97,7 @@ pub(super) fn render_pass(
         .map(|m| m.frame(scene, &view))
         .unwrap_or_default();
     // Gouraud light by light: each direct light's vertex radiance drawn on its own.
-    let per_light: Vec<Option<_>> = if integrator.gouraud_per_light(scene, shadowed) {
+    let per_light: Vec<Option<_>> = if integrator.gouraud_per_light(scene, direct, shadowed) {
         (0..scene.lights.len())
             .map(|l| {
                 direct[l].then(|| {

@@ -13,16 +13,14 @@ mod accumulation;
 mod buffers;
 pub mod capture;
 mod frame;
-mod integrator;
+pub mod integrators;
 mod medium;
 mod plan;
-mod ray_traced;
 mod renderer;
 
 pub use buffers::BufferInfo;
 pub use frame::{Frame, band_rows};
-pub use integrator::Integrator;
-pub(crate) use integrator::{exact_direct, lit_directly};
+pub use integrators::Integrator;
 pub use plan::EnvironmentMaps;
 pub use renderer::{Prepasses, Renderer, capture_cube};
 
@@ -42,7 +40,8 @@ pub fn render(scene: &Scene) -> Result<Image> {
 pub fn visible_surface(scene: &Scene) -> (View, VisibleSurface) {
     let view = sample_view(scene);
     let direct = vec![true; scene.lights.len()];
-    let polygons = Integrator::Direct.draw_list(scene, &view, &direct);
+    let polygons =
+        integrators::ScanLine::draw_list(&integrators::DirectLighting, scene, &view, &direct);
     let surface = crate::raster::rasterize(&polygons, view.width, view.height);
     (view, surface)
 }

@@ -4,7 +4,7 @@
 //! which lights are shadowed and by what, which environments are shown, what the
 //! medium marches against, which element's hemi-cube is shown.
 
-use super::integrator::Integrator;
+use super::integrators::{Declaration, ScanLine};
 use crate::shadow::{LightShadows, SceneOccluders};
 use crate::texture::environment::EnvironmentMap;
 use std::sync::Arc;
@@ -14,8 +14,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 pub type EnvironmentMaps = Arc<[Option<Arc<EnvironmentMap>>]>;
 
 pub struct FramePlan {
-    /// How the frame is lit.
-    pub integrator: Integrator,
+    /// How the frame is lit: the integrator, and what it declares of itself.
+    pub integrator: Arc<dyn ScanLine>,
+    pub declared: &'static Declaration,
     /// Per light, whether shading adds it directly (and so whether it is shadowed).
     pub direct: Vec<bool>,
     /// Per light, its shadow pre-pass (`None`: not added directly, or unshadowed).

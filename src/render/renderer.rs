@@ -1,9 +1,10 @@
 //! The renderer: one scene, and the view-independent work of its frames kept between
 //! them. The occluders' hierarchy, each light's shadow pre-pass (shadow maps, shadow
 //! polygons, shadow volumes' quads, Bouknight & Kelley's projections) and the
-//! radiosity solution are built the first time a frame needs them and reused after
-//! (texture pyramids and summed-area tables are built once, with the scene), and so
-//! are environment maps captured from the scene.
+//! integrator's own state (a radiosity solution, a second pass: `integrators::Kept`)
+//! are built the first time a frame needs them and reused after (texture pyramids
+//! and summed-area tables are built once, with the scene), and so are environment
+//! maps captured from the scene.
 //! Moving the camera invalidates none of it; moving a light, only that light's
 //! shadows; changing the shadow settings, every light's shadows.
 
@@ -11,18 +12,15 @@ use super::accumulation::render_rotated_grid;
 use super::buffers::{BufferInfo, available};
 use super::capture::{face_cameras, without_objects};
 use super::frame::{Frame, render_frame};
-use super::integrator::{Integrator, exact_direct, lit_directly, second_pass};
+use super::integrators::{
+    Declaration, Integrator, Kept, Lighting, Role, ScanLine, check_keys, declaration,
+};
 use super::plan::{EnvironmentMaps, FramePlan};
-use super::ray_traced;
 use crate::error::{Error, Result};
-use crate::global::TracedScene;
-use crate::global::final_gather::FinalGather;
-use crate::global::irradiance_cache::{IrradianceCache, ViewGather};
-use crate::global::two_pass::{self, SecondPass};
 use crate::image_io::Image;
-use crate::radiosity::{self, Solution};
+use crate::radiosity::Solution;
 use crate::scene::{Camera, EnvironmentSource, Light, Scene};
-use crate::settings::{Filter, MediumMethod, SamplePattern, ShadowMethod, ShadowSettings};
+use crate::settings::{Filter, MediumMethod, SamplePattern, ShadowSettings};
 use crate::shadow::{self, LightShadows, SceneOccluders, SharedWork};
 use crate::texture::Texels;
 use crate::texture::environment::EnvironmentMap;
@@ -48,24 +46,14 @@ pub struct Renderer {
     scene: Scene,
     occluders: Mutex<Option<Arc<SceneOccluders>>>,
     lights: Vec<Mutex<Option<Arc<dyn LightShadows>>>>,
-    radiosity: Mutex<Option<Arc<Solution>>>,
-    /// The two-pass method's second pass over that solution.
-    second_pass: Mutex<Option<Arc<SecondPass>>>,
-    /// The final gather over the whole solution (made with it, before its direct
-    /// part is taken out for display).
-    final_gather: Mutex<Option<Arc<FinalGather>>>,
-    /// The irradiance cache last swept, and the camera and gather it was swept
-    /// for: frames from the same view reuse it.
-    view_gather: Mutex<Option<(Camera, Arc<ViewGather>)>>,
-    swept_caches: AtomicUsize,
+    /// What the scene's integrator declares, and its view-independent state.
+    declared: &'static Declaration,
+    kept: Box<dyn Kept>,
     environments: Mutex<Option<EnvironmentMaps>>,
-    /// The scene for rays (polygons, and spheres as quadrics or not).
-    traced: Mutex<Option<(bool, Arc<TracedScene>)>>,
     /// Whether captured environments are made (not inside a capture).
     captures: bool,
     built_occluders: AtomicUsize,
     built_light_shadows: AtomicUsize,
-    built_radiosity: AtomicUsize,
     built_captures: AtomicUsize,
     hemicube_element: usize,
     progress: Option<super::plan::Progress>,
@@ -75,21 +63,17 @@ pub struct Renderer {
 impl Renderer {
     /// A renderer of `scene`; nothing is built until a frame needs it.
     pub fn new(scene: Scene) -> Renderer {
+        let declared = declaration(Integrator::of(&scene));
         Renderer {
             lights: scene.lights.iter().map(|_| Mutex::new(None)).collect(),
             scene,
             occluders: Mutex::new(None),
-            radiosity: Mutex::new(None),
-            second_pass: Mutex::new(None),
-            final_gather: Mutex::new(None),
-            view_gather: Mutex::new(None),
-            swept_caches: AtomicUsize::new(0),
+            declared,
+            kept: (declared.kept)(),
             environments: Mutex::new(None),
-            traced: Mutex::new(None),
             captures: true,
             built_occluders: AtomicUsize::new(0),
             built_light_shadows: AtomicUsize::new(0),
-            built_radiosity: AtomicUsize::new(0),
             built_captures: AtomicUsize::new(0),
             hemicube_element: 0,
             progress: None,
@@ -131,19 +115,6 @@ impl Renderer {
         Ok(maps)
     }
 
-    /// The scene as rays see it, built once (geometry never changes).
-    fn traced_scene(&self, analytic_spheres: bool) -> Arc<TracedScene> {
-        let mut slot = self.traced.lock().expect("no poisoned lock");
-        match slot.as_ref() {
-            Some((analytic, traced)) if *analytic == analytic_spheres => traced.clone(),
-            _ => {
-                let traced = Arc::new(TracedScene::new(&self.scene, analytic_spheres));
-                *slot = Some((analytic_spheres, traced.clone()));
-                traced
-            }
-        }
-    }
-
     /// Captured environments depend on the lights and shadows: made again.
     fn forget_captures(&self) {
         *self.environments.lock().expect("no poisoned lock") = None;
@@ -159,7 +130,7 @@ impl Renderer {
         Prepasses {
             occluders: self.built_occluders.load(Ordering::Relaxed),
             light_shadows: self.built_light_shadows.load(Ordering::Relaxed),
-            radiosity: self.built_radiosity.load(Ordering::Relaxed),
+            radiosity: self.kept.solution().map_or(0, |s| s.solved()),
             captures: self.built_captures.load(Ordering::Relaxed),
         }
     }
@@ -220,18 +191,20 @@ impl Renderer {
 
     /// Samples per pixel along each axis (`render.supersample`): a frame setting,
     /// nothing view-independent changes (the viewer previews at one sample a
-    /// pixel while the view moves). The irradiance cache, swept per view and
+    /// pixel while the view moves). An irradiance cache, swept per view and
     /// sampling, is swept again.
     pub fn set_supersample(&mut self, samples: u32) {
-        if self.scene.render.supersample != samples {
-            self.scene.render.supersample = samples.max(1);
-            *self.view_gather.lock().expect("no poisoned lock") = None;
-        }
+        self.scene.render.supersample = samples.max(1);
     }
 
     /// Whether a radiosity solution is kept (solved, or handed over).
     pub fn has_radiosity_solution(&self) -> bool {
-        self.radiosity.lock().expect("no poisoned lock").is_some()
+        self.kept.solution().is_some_and(|s| s.has_solution())
+    }
+
+    /// The integrator that lights this renderer's frames.
+    pub fn integrator(&self) -> Integrator {
+        self.declared.integrator
     }
 
     /// New shadow settings: every light's shadows are redone.
@@ -244,43 +217,37 @@ impl Renderer {
     }
 
     /// Hands the renderer a radiosity solution of its scene (solved elsewhere, with
-    /// progress shown, say), so that it is not solved again.
+    /// progress shown, say), so that it is not solved again; an integrator that
+    /// reads no solution (direct light, ray tracing) has no use for it.
     pub fn set_radiosity_solution(&mut self, solution: Arc<Solution>) {
-        *self.final_gather.lock().expect("no poisoned lock") = self.final_gather_over(&solution);
-        let solution = self.drawn_part(&solution).map_or(solution, Arc::new);
-        *self.radiosity.lock().expect("no poisoned lock") = Some(solution);
-        *self.second_pass.lock().expect("no poisoned lock") = None;
+        if let Some(reader) = self.kept.solution() {
+            reader.hand_over(&self.scene, solution);
+        }
     }
 
-    /// Refuses, before any work, a shadow method that cannot shadow one of the
-    /// lights the frame shadows (and, under the two-pass methods, materials their
-    /// first pass cannot carry), and a ray march over its step budget.
+    /// Refuses, before any work, what the integrator cannot render (a key it would
+    /// ignore, materials the two-pass methods' first pass cannot carry), a shadow
+    /// method that cannot shadow one of the lights the frame shadows, and a ray
+    /// march over its step budget.
     pub fn check(&self) -> Result<()> {
-        super::medium::check_march(&self.scene)?;
-        let method = shadow::method(self.scene.shadows.method);
-        if self.ray_traced().is_some() && self.scene.shadows.method != ShadowMethod::None {
-            return Err(Error::invalid(
-                "shadows.method",
-                format!(
-                    "shadows.method = \"{}\": ray tracing (global.method = \"ray-tracing\") casts its own shadow rays and would ignore it; leave it out, or remove [global]",
-                    method.name
-                ),
-            ));
-        }
-        if self.ray_traced().is_none() {
-            let direct = lit_directly(
-                &self.scene,
-                self.scene.radiosity.is_some() && !exact_direct(&self.scene),
-            );
+        self.check_integrator()?;
+        if self.declared.role == Role::ScanLine {
+            let method = shadow::method(self.scene.shadows.method);
+            let direct = (self.declared.direct_lights)(&self.scene);
             for (index, _) in direct.iter().enumerate().filter(|(_, d)| **d) {
                 shadow::check(&self.scene, index, method.method)?;
             }
             (method.budget)(&self.scene).map_err(Error::OverBudget)?;
         }
-        if let Some(g) = second_pass(&self.scene) {
-            two_pass::check(&self.scene, g.method)?;
-        }
         Ok(())
+    }
+
+    /// What every frame checks first: the march's budget, the integrator's keys
+    /// and its own check.
+    fn check_integrator(&self) -> Result<()> {
+        super::medium::check_march(&self.scene)?;
+        check_keys(&self.scene, self.declared)?;
+        (self.declared.check)(&self.scene)
     }
 
     /// Whether a polygon lies in front of the camera, within its field of view and
@@ -296,7 +263,7 @@ impl Renderer {
     pub fn warnings(&self) -> Vec<String> {
         let method = shadow::method(self.scene.shadows.method);
         let mut warnings = self.scene.warnings.clone();
-        if self.ray_traced().is_none() {
+        if self.declared.role == Role::ScanLine {
             warnings.extend((method.warnings)(&self.scene));
         }
         said_once(warnings)
@@ -308,28 +275,29 @@ impl Renderer {
     }
 
     /// The frame, and the buffers named in `buffers` (see `available_buffers`):
-    /// Whitted's rays through the pixels, or the scan-line frame.
+    /// made by an integrator that makes its own (Whitted's rays through the
+    /// pixels), or the scan-line frame.
     pub fn render_with_buffers(&self, buffers: &[String]) -> Result<Frame> {
-        let plan = self.plan()?;
-        match &plan.integrator {
-            Integrator::Whitted(traced, settings) => {
-                ray_traced::render(&self.scene, &plan, traced, settings, buffers)
+        match self.lighting()? {
+            Lighting::OwnFrame(integrator) => {
+                integrator.render(&self.scene, &self.environment_maps()?, buffers)
             }
-            _ if self.scene.render.sample_pattern == SamplePattern::RotatedGrid
-                && self.scene.render.supersample > 1 =>
-            {
-                if let Some(name) = buffers.first() {
-                    return Err(Error::invalid(
-                        "render.sample_pattern",
-                        format!(
-                            "render.sample_pattern: the buffer `{name}` is made on the regular grid's samples; the rotated grid averages {} frames and gives the image alone (use sample_pattern = \"regular\" for buffers)",
-                            self.scene.render.supersample.pow(2)
-                        ),
-                    ));
+            Lighting::ScanLine(integrator) => {
+                let plan = self.plan(integrator)?;
+                if self.scene.render.sample_pattern == SamplePattern::RotatedGrid
+                    && self.scene.render.supersample > 1
+                {
+                    if let Some(name) = buffers.first() {
+                        return Err(Error::invalid(
+                            "render.sample_pattern",
+                            format!(
+                                "render.sample_pattern: the buffer `{name}` is made on the regular grid's samples; the rotated grid averages {} frames and gives the image alone (use sample_pattern = \"regular\" for buffers)",
+                                self.scene.render.supersample.pow(2)
+                            ),
+                        ));
+                    }
+                    return render_rotated_grid(&self.scene, &plan);
                 }
-                render_rotated_grid(&self.scene, &plan)
-            }
-            Integrator::Direct | Integrator::Radiosity(..) => {
                 render_frame(&self.scene, &plan, buffers)
             }
         }
@@ -337,23 +305,21 @@ impl Renderer {
 
     /// The buffers this renderer's frames can give.
     pub fn available_buffers(&self) -> Result<Vec<BufferInfo>> {
-        Ok(available(&self.scene, &self.plan()?))
+        match self.lighting()? {
+            Lighting::OwnFrame(integrator) => Ok(integrator.buffers()),
+            Lighting::ScanLine(integrator) => Ok(available(&self.scene, &self.plan(integrator)?)),
+        }
     }
 
-    /// The `[global]` settings when the scene is ray traced (Whitted).
-    fn ray_traced(&self) -> Option<&crate::settings::GlobalSettings> {
-        self.scene
-            .global
-            .as_ref()
-            .filter(|g| !g.method.reads_radiosity())
+    /// What the next frame needs of the integrator, checked first.
+    fn lighting(&self) -> Result<Lighting> {
+        self.check_integrator()?;
+        self.kept.lighting(&self.scene)
     }
 
-    /// Everything the next frame needs but the scene: the one place that decides
-    /// which integrator runs, and that solves radiosity when none is kept.
-    fn plan(&self) -> Result<FramePlan> {
-        super::medium::check_march(&self.scene)?;
-        let integrator = self.integrator()?;
-        let direct = integrator.direct_lights(&self.scene);
+    /// Everything the next scan-line frame needs but the scene.
+    fn plan(&self, integrator: Arc<dyn ScanLine>) -> Result<FramePlan> {
+        let direct = (self.declared.direct_lights)(&self.scene);
         let shadows = self.shadows_of(&direct)?;
         let environments = self.environment_maps()?;
         let marched = self
@@ -361,10 +327,10 @@ impl Renderer {
             .medium
             .as_ref()
             .is_some_and(|m| m.extinction > 0.0 && m.method == MediumMethod::RayMarching);
-        let occluders =
-            (marched && !matches!(integrator, Integrator::Whitted(..))).then(|| self.occluders());
+        let occluders = marched.then(|| self.occluders());
         Ok(FramePlan {
             integrator,
+            declared: self.declared,
             direct,
             shadows,
             environments,
@@ -375,126 +341,10 @@ impl Renderer {
         })
     }
 
-    /// How this scene's frames are lit.
-    fn integrator(&self) -> Result<Integrator> {
-        if let Some(g) = self.ray_traced() {
-            let traced = self.traced_scene(g.analytic_spheres);
-            return Ok(Integrator::Whitted(traced, g.clone()));
-        }
-        let second_pass = second_pass(&self.scene);
-        let Some(settings) = &self.scene.radiosity else {
-            if let Some(g) = second_pass {
-                return Err(Error::Radiosity(format!(
-                    "global.method = \"{}\" reads a radiosity solution in its second pass: add a [radiosity] table",
-                    g.method.name()
-                )));
-            }
-            return Ok(Integrator::Direct);
-        };
-        let solution = {
-            let mut slot = self.radiosity.lock().expect("no poisoned lock");
-            match slot.as_ref() {
-                Some(solution) => solution.clone(),
-                None => {
-                    if let Some(g) = second_pass {
-                        two_pass::check(&self.scene, g.method)?;
-                    }
-                    let solution = radiosity::solve(&self.scene, settings, &mut |_, _| {})?;
-                    self.built_radiosity.fetch_add(1, Ordering::Relaxed);
-                    *self.final_gather.lock().expect("no poisoned lock") =
-                        self.final_gather_over(&solution);
-                    let solution = Arc::new(self.drawn(solution)?);
-                    *slot = Some(solution.clone());
-                    solution
-                }
-            }
-        };
-        let Some(g) = second_pass else {
-            return Ok(Integrator::Radiosity(solution, None, None));
-        };
-        let mut slot = self.second_pass.lock().expect("no poisoned lock");
-        let second = match slot.as_ref() {
-            Some(second) => second.clone(),
-            None => {
-                // Rays read the solution on its mesh: spheres stay polygons here.
-                let traced = self.traced_scene(false);
-                let lit = lit_directly(&self.scene, !exact_direct(&self.scene));
-                let second = Arc::new(SecondPass::new(
-                    &self.scene,
-                    &solution,
-                    traced,
-                    g.clone(),
-                    lit,
-                ));
-                *slot = Some(second.clone());
-                second
-            }
-        };
-        let gather = self.final_gather.lock().expect("no poisoned lock").clone();
-        let view_gather = gather.map(|gather| self.view_gather(gather));
-        Ok(Integrator::Radiosity(solution, Some(second), view_gather))
-    }
-
-    /// The irradiance cache of `gather` for the camera: swept the first time a
-    /// frame asks, again only when the camera or the gather changes.
-    fn view_gather(&self, gather: Arc<FinalGather>) -> Arc<ViewGather> {
-        let mut slot = self.view_gather.lock().expect("no poisoned lock");
-        if let Some((camera, kept)) = slot.as_ref()
-            && *camera == self.scene.camera
-            && Arc::ptr_eq(&kept.gather, &gather)
-        {
-            return kept.clone();
-        }
-        let camera = &self.scene.camera;
-        let view = crate::raster::View::new(camera, camera.width, camera.height);
-        let cache = IrradianceCache::sweep(&self.scene, &gather, &view);
-        self.swept_caches.fetch_add(1, Ordering::Relaxed);
-        let made = Arc::new(ViewGather { gather, cache });
-        *slot = Some((camera.clone(), made.clone()));
-        made
-    }
-
     /// How many times an irradiance cache was swept (a view-dependent pass: again
     /// for each new camera).
     pub fn irradiance_caches_swept(&self) -> usize {
-        self.swept_caches.load(Ordering::Relaxed)
-    }
-
-    /// The final gather `[global.final_gather]` asks for, over `solution` (whole).
-    fn final_gather_over(&self, solution: &Solution) -> Option<Arc<FinalGather>> {
-        let settings = second_pass(&self.scene)?.final_gather?;
-        let traced = self.traced_scene(false);
-        Some(Arc::new(FinalGather::new(
-            &self.scene,
-            solution,
-            traced,
-            settings,
-        )))
-    }
-
-    /// The solution as frames draw it (`drawn_part`); with exact direct light, an
-    /// error when the solution kept no direct part to take out.
-    fn drawn(&self, solution: radiosity::Solution) -> Result<radiosity::Solution> {
-        match self.drawn_part(&solution) {
-            Some(drawn) => Ok(drawn),
-            None if exact_direct(&self.scene) => Err(Error::Radiosity(
-                "global.exact_direct needs the solution's direct part, which adaptive subdivision does not keep: leave `subdivide` out".into(),
-            )),
-            None => Ok(solution),
-        }
-    }
-
-    /// What frames draw of `solution`, where it is not the solution itself: its
-    /// indirect part when the second pass computes the direct light exactly; else
-    /// the solution without the direct light of the point, spot, distant and
-    /// sphere lights, which every sample adds itself. `None`: nothing to take out
-    /// (or, with exact direct light, no direct part kept).
-    fn drawn_part(&self, solution: &radiosity::Solution) -> Option<radiosity::Solution> {
-        if exact_direct(&self.scene) {
-            solution.indirect()
-        } else {
-            solution.without_light_sources()
-        }
+        self.kept.caches_swept()
     }
 
     /// The shadow pre-passes of the lights `direct` selects (`None` for the others

@@ -77,7 +77,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
         .transpose()?;
     if let Some(g) = &global {
         ensure_valid!(
-            g.method.reads_radiosity() || render.supersample == 1,
+            !g.method.antialiases_itself() || render.supersample == 1,
             "render.supersample",
             "render.supersample: ray tracing antialiases by Whitted's adaptive subdivision (global.subdivisions); leave supersample at 1, got {}",
             render.supersample
@@ -138,7 +138,7 @@ pub fn scene_from_table(table: toml::Table, resources: &dyn Resources) -> Result
             global.is_some(),
         )?;
         ensure_valid!(
-            material.gloss.is_none() || global.as_ref().is_some_and(|g| g.method.reads_radiosity()),
+            material.gloss.is_none() || global.as_ref().is_some_and(|g| g.method.reads_gloss()),
             format!("materials.{name}.gloss"),
             "materials.{name}.gloss: a glossy mirror is gathered through the two-pass methods' reflection frustum; set [global] method = \"two-pass\" (ray tracing and environment maps follow ideal mirrors and would ignore it)"
         );

@@ -168,34 +168,74 @@ fn subdivision_levels() -> u32 {
     2
 }
 
-/// `[global]`: the global-illumination method and its settings.
+/// `[global]`: the global-illumination method and its settings. Every key but
+/// `method` is optional, so that the keys a file set can be told from the defaults
+/// (each integrator declares the keys it reads; the others are refused).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GlobalFile {
     pub method: crate::settings::GlobalMethod,
-    #[serde(default = "ray_depth")]
-    pub depth: u32,
-    #[serde(default = "ray_threshold")]
-    pub threshold: f64,
-    #[serde(default = "subdivisions")]
-    pub subdivisions: u32,
-    #[serde(default = "contrast")]
-    pub contrast: f64,
-    #[serde(default)]
-    pub weights: crate::settings::SpecularWeights,
+    /// Absent: 5.
+    pub depth: Option<u32>,
+    /// Absent: 10⁻³.
+    pub threshold: Option<f64>,
+    /// Absent: 2.
+    pub subdivisions: Option<u32>,
+    /// Absent: 0.05.
+    pub contrast: Option<f64>,
+    /// Absent: constant.
+    pub weights: Option<crate::settings::SpecularWeights>,
     /// Absent: 2 (the two-pass methods' mirror-of-mirror levels).
     pub window_depth: Option<u32>,
     /// Absent: 10 (the two-pass methods' reflection frustum, cells a side).
     pub frustum_resolution: Option<u32>,
     /// Absent: all four.
     pub mechanisms: Option<Vec<MechanismFile>>,
-    #[serde(default)]
-    pub exact_direct: bool,
-    #[serde(default = "yes")]
-    pub analytic_spheres: bool,
-    #[serde(default)]
-    pub ambient: Vec3File,
+    /// Absent: false.
+    pub exact_direct: Option<bool>,
+    /// Absent: true.
+    pub analytic_spheres: Option<bool>,
+    /// Absent: black.
+    pub ambient: Option<Vec3File>,
     pub final_gather: Option<FinalGatherFile>,
+}
+
+impl GlobalFile {
+    /// The keys the file set besides `method`, as `global.<key>`.
+    pub fn keys_set(&self) -> Vec<&'static str> {
+        let GlobalFile {
+            method: _,
+            depth,
+            threshold,
+            subdivisions,
+            contrast,
+            weights,
+            window_depth,
+            frustum_resolution,
+            mechanisms,
+            exact_direct,
+            analytic_spheres,
+            ambient,
+            final_gather,
+        } = self;
+        [
+            ("global.depth", depth.is_some()),
+            ("global.threshold", threshold.is_some()),
+            ("global.subdivisions", subdivisions.is_some()),
+            ("global.contrast", contrast.is_some()),
+            ("global.weights", weights.is_some()),
+            ("global.window_depth", window_depth.is_some()),
+            ("global.frustum_resolution", frustum_resolution.is_some()),
+            ("global.mechanisms", mechanisms.is_some()),
+            ("global.exact_direct", exact_direct.is_some()),
+            ("global.analytic_spheres", analytic_spheres.is_some()),
+            ("global.ambient", ambient.is_some()),
+            ("global.final_gather", final_gather.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(key, set)| set.then_some(key))
+        .collect()
+    }
 }
 
 /// `[global.final_gather]`: the view pass gathers the indirect light from the
@@ -240,18 +280,6 @@ pub enum MechanismFile {
     SpecularSpecular,
 }
 
-fn ray_depth() -> u32 {
-    5
-}
-fn ray_threshold() -> f64 {
-    1e-3
-}
-fn subdivisions() -> u32 {
-    2
-}
-fn contrast() -> f64 {
-    0.05
-}
 /// `[shadows]`: which method, and the shadow map's settings.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -4,7 +4,7 @@ use super::file::{FinalGatherFile, GlobalFile, MechanismFile};
 use super::validate::colour;
 use crate::error::Result;
 use crate::error::ensure_valid;
-use crate::settings::{FinalGatherSettings, GlobalMethod, GlobalSettings as Settings, Mechanisms};
+use crate::settings::{FinalGatherSettings, GlobalSettings as Settings, Mechanisms};
 
 /// The longest ray tree `depth` allows: rays grow as 2^depth under glass.
 pub const MAX_DEPTH: u32 = 16;
@@ -14,6 +14,14 @@ pub const MAX_SUBDIVISIONS: u32 = 6;
 pub const MAX_WINDOW_DEPTH: u32 = 4;
 /// Rays of one final gather: 2²⁰ is a thousand times a usual gather.
 pub const MAX_GATHER_RAYS: u32 = 1 << 20;
+/// Reflected and refracted rays from the eye when the scene gives none.
+const DEFAULT_DEPTH: u32 = 5;
+/// A ray's least weight when the scene gives none.
+const DEFAULT_THRESHOLD: f64 = 1e-3;
+/// Whitted's subdivision levels when the scene gives none.
+const DEFAULT_SUBDIVISIONS: u32 = 2;
+/// Whitted's corner contrast when the scene gives none.
+const DEFAULT_CONTRAST: f64 = 0.05;
 /// Mirror-of-mirror levels when the scene gives none.
 const DEFAULT_WINDOW_DEPTH: u32 = 2;
 /// The reflection frustum's cells a side when the scene gives none.
@@ -22,41 +30,33 @@ const DEFAULT_FRUSTUM_RESOLUTION: u32 = 10;
 pub const MAX_FRUSTUM_RESOLUTION: u32 = 256;
 
 pub fn from_file(g: &GlobalFile) -> Result<Settings> {
+    let depth = g.depth.unwrap_or(DEFAULT_DEPTH);
+    let threshold = g.threshold.unwrap_or(DEFAULT_THRESHOLD);
+    let subdivisions = g.subdivisions.unwrap_or(DEFAULT_SUBDIVISIONS);
+    let contrast = g.contrast.unwrap_or(DEFAULT_CONTRAST);
     ensure_valid!(
-        g.depth <= MAX_DEPTH,
+        depth <= MAX_DEPTH,
         "global.depth",
         "global.depth must be at most {MAX_DEPTH} (a ray tree under glass doubles with each level), got {}",
-        g.depth
+        depth
     );
     ensure_valid!(
-        g.threshold.is_finite() && (0.0..1.0).contains(&g.threshold),
+        threshold.is_finite() && (0.0..1.0).contains(&threshold),
         "global.threshold",
         "global.threshold must be a fraction from 0 to 1, got {}",
-        g.threshold
+        threshold
     );
     ensure_valid!(
-        g.subdivisions <= MAX_SUBDIVISIONS,
+        subdivisions <= MAX_SUBDIVISIONS,
         "global.subdivisions",
         "global.subdivisions must be at most {MAX_SUBDIVISIONS} (4^levels squares per pixel), got {}",
-        g.subdivisions
+        subdivisions
     );
     ensure_valid!(
-        g.contrast.is_finite() && g.contrast > 0.0,
+        contrast.is_finite() && contrast > 0.0,
         "global.contrast",
         "global.contrast must be a positive number, got {}",
-        g.contrast
-    );
-    let ray_traced = g.method == GlobalMethod::RayTracing;
-    ensure_valid!(
-        !(ray_traced && g.window_depth.is_some()),
-        "global.window_depth",
-        "global.window_depth = {} is the two-pass methods' (mirrors seen through mirrors in pass 1); ray tracing follows mirrors by its reflected rays (global.depth) and would ignore it",
-        g.window_depth.unwrap_or_default()
-    );
-    ensure_valid!(
-        !(ray_traced && g.mechanisms.is_some()),
-        "global.mechanisms",
-        "global.mechanisms selects the two-pass methods' transfers; ray tracing would ignore it (leave it out, or choose method = \"two-pass\")"
+        contrast
     );
     let window_depth = g.window_depth.unwrap_or(DEFAULT_WINDOW_DEPTH);
     ensure_valid!(
@@ -64,12 +64,6 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         "global.window_depth",
         "global.window_depth must be at most {MAX_WINDOW_DEPTH} (each level renders a virtual environment per mirror), got {}",
         window_depth
-    );
-    ensure_valid!(
-        !(ray_traced && g.frustum_resolution.is_some()),
-        "global.frustum_resolution",
-        "global.frustum_resolution = {} is the two-pass methods' (the reflection frustum of glossy surfaces in pass 2); ray tracing follows ideal mirrors and would ignore it",
-        g.frustum_resolution.unwrap_or_default()
     );
     let frustum_resolution = g.frustum_resolution.unwrap_or(DEFAULT_FRUSTUM_RESOLUTION);
     ensure_valid!(
@@ -91,7 +85,7 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         None => None,
         Some(f) => {
             ensure_valid!(
-                g.method.reads_radiosity() && g.exact_direct,
+                g.method.reads_radiosity() && g.exact_direct == Some(true),
                 "global.final_gather",
                 "global.final_gather gathers the indirect light from a radiosity solution beside the exact direct light: it needs a two-pass method and global.exact_direct = true"
             );
@@ -100,18 +94,19 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
     };
     Ok(Settings {
         method: g.method,
-        depth: g.depth,
-        threshold: g.threshold,
-        subdivisions: g.subdivisions,
-        contrast: g.contrast,
-        weights: g.weights,
+        depth,
+        threshold,
+        subdivisions,
+        contrast,
+        weights: g.weights.unwrap_or_default(),
         window_depth,
         frustum_resolution,
         mechanisms,
-        exact_direct: g.exact_direct,
-        analytic_spheres: g.analytic_spheres,
-        ambient: colour("global.ambient", g.ambient)?,
+        exact_direct: g.exact_direct.unwrap_or(false),
+        analytic_spheres: g.analytic_spheres.unwrap_or(true),
+        ambient: colour("global.ambient", g.ambient.unwrap_or_default())?,
         final_gather,
+        keys_set: g.keys_set(),
     })
 }
 

@@ -7,9 +7,10 @@
 
 use crate::catalogue;
 use crate::error::Result;
-use crate::render::{Renderer, exact_direct, lit_directly};
+use crate::render::Renderer;
+use crate::render::integrators::{INTEGRATORS, Integrator, Role, declaration, direct_lights};
 use crate::scene::{EnvironmentSource, Scene};
-use crate::settings::{Filter, GlobalMethod, MediumMethod, ShadowMethod, Solver};
+use crate::settings::{Filter, MediumMethod, ShadowMethod, Solver};
 use crate::shadow;
 use crate::texture::environment::Layout;
 
@@ -66,15 +67,14 @@ fn set(key: &str, value: &str) -> String {
 /// Whitted's ray tracing and the two-pass methods, where the scene has `[global]`.
 fn global(scene: &Scene, load: &Load) -> Option<(Family, usize)> {
     let current = scene.global.as_ref()?.method;
-    let methods = [
-        GlobalMethod::RayTracing,
-        GlobalMethod::TwoPass,
-        GlobalMethod::RushmeierTorrance,
-    ];
-    let candidates = methods.map(|method| {
+    let methods = INTEGRATORS.iter().filter_map(|&i| {
+        let declared = declaration(i);
+        declared.global_method.map(|m| (m, declared.role))
+    });
+    let candidates = methods.map(|(method, role)| {
         let mut sets = vec![set("global.method", method.name())];
-        if method == GlobalMethod::RayTracing && scene.shadows.method != ShadowMethod::None {
-            // Whitted casts his own shadow rays.
+        if role == Role::OwnFrame && scene.shadows.method != ShadowMethod::None {
+            // A frame made by rays casts its own shadow rays (Whitted's).
             sets.push(set("shadows.method", "none"));
         }
         let choice = Choice {
@@ -185,12 +185,9 @@ fn medium(scene: &Scene, load: &Load) -> Option<(Family, usize)> {
 
 /// Every shadow method that can shadow the lights the frame lights directly.
 fn shadows(scene: &Scene) -> Option<(Family, usize)> {
-    let traced = scene
-        .global
-        .as_ref()
-        .is_some_and(|g| !g.method.reads_radiosity());
-    let direct = lit_directly(scene, scene.radiosity.is_some() && !exact_direct(scene));
-    if traced || !direct.contains(&true) {
+    let own_frame = declaration(Integrator::of(scene)).role == Role::OwnFrame;
+    let direct = direct_lights(scene);
+    if own_frame || !direct.contains(&true) {
         return None;
     }
     let mut options = Vec::new();

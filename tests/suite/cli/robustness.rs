@@ -178,7 +178,7 @@ fn options_that_would_be_ignored_are_refused_or_do_what_they_say() {
                 "-o",
                 "x.png",
             ],
-            "global.window_depth = 3 is the two-pass methods'",
+            "global.window_depth is read by two-pass, rushmeier-torrance; ray-tracing (global.method = \"ray-tracing\") would ignore it",
         ),
         (
             vec![
@@ -189,7 +189,7 @@ fn options_that_would_be_ignored_are_refused_or_do_what_they_say() {
                 "-o",
                 "x.png",
             ],
-            "global.mechanisms selects the two-pass methods' transfers",
+            "global.mechanisms is read by two-pass, rushmeier-torrance; ray-tracing",
         ),
         (
             vec![

@@ -1,0 +1,145 @@
+//! Whitted's ray tracer (`global::whitted`: T. Whitted, "An improved illumination
+//! model for shaded display", CACM 23(6), 1980), which makes its frame with rays
+//! through the pixels' corners, split where they differ, instead of the scan-line
+//! pass. Chosen by `[global] method = "ray-tracing"`.
+
+use super::{BufferInfo, Declaration, Integrator, Kept, Lighting, OwnFrame, ReadsSolution, Role};
+use crate::error::{Error, Result};
+use crate::global::TracedScene;
+use crate::global::whitted::Whitted;
+use crate::image_io::{Buffer, BufferData};
+use crate::raster::View;
+use crate::render::frame::Frame;
+use crate::render::plan::EnvironmentMaps;
+use crate::scene::Scene;
+use crate::settings::GlobalMethod;
+use crate::settings::ShadowMethod;
+use std::sync::{Arc, Mutex};
+
+/// The buffer a ray-traced frame gives, and what it holds.
+pub const RAYS: (&str, &str) = (
+    "rays",
+    "rays traced per pixel (eye, reflected and refracted; colour-mapped): where Whitted's adaptive subdivision split the pixel, and how deep its trees went",
+);
+
+pub static DECLARATION: Declaration = Declaration {
+    integrator: Integrator::RayTracing,
+    name: "ray-tracing",
+    global_method: Some(GlobalMethod::RayTracing),
+    entry: "ray-tracing",
+    keys: &[
+        "global.depth",
+        "global.threshold",
+        "global.subdivisions",
+        "global.contrast",
+        "global.weights",
+        "global.analytic_spheres",
+        "global.ambient",
+    ],
+    buffers: &[RAYS.0],
+    role: Role::OwnFrame,
+    direct_lights: no_light,
+    check,
+    kept: || Box::new(KeptTracer(Mutex::new(None))),
+};
+
+/// Whitted's tracer adds every light itself, with its own shadow rays.
+fn no_light(scene: &Scene) -> Vec<bool> {
+    vec![false; scene.lights.len()]
+}
+
+/// Refuses a shadow method, which the tracer's shadow rays would replace.
+fn check(scene: &Scene) -> Result<()> {
+    let method = scene.shadows.method;
+    if method == ShadowMethod::None {
+        return Ok(());
+    }
+    Err(Error::invalid(
+        "shadows.method",
+        format!(
+            "shadows.method = \"{}\": ray tracing (global.method = \"ray-tracing\") casts its own shadow rays and would ignore it; leave it out, or remove [global]",
+            method.name()
+        ),
+    ))
+}
+
+/// The scene as rays see it, built once (geometry never changes).
+struct KeptTracer(Mutex<Option<Arc<Tracer>>>);
+
+impl Kept for KeptTracer {
+    fn lighting(&self, scene: &Scene) -> Result<Lighting> {
+        let mut slot = self.0.lock().expect("no poisoned lock");
+        let analytic = scene.global.as_ref().is_none_or(|g| g.analytic_spheres);
+        let tracer = slot.get_or_insert_with(|| {
+            Arc::new(Tracer {
+                traced: TracedScene::new(scene, analytic),
+            })
+        });
+        Ok(Lighting::OwnFrame(tracer.clone()))
+    }
+
+    fn solution(&self) -> Option<&dyn ReadsSolution> {
+        None
+    }
+
+    fn caches_swept(&self) -> usize {
+        0
+    }
+}
+
+/// Whitted's tracer over the scene as rays see it.
+struct Tracer {
+    traced: TracedScene,
+}
+
+impl OwnFrame for Tracer {
+    fn render(
+        &self,
+        scene: &Scene,
+        environments: &EnvironmentMaps,
+        wanted: &[String],
+    ) -> Result<Frame> {
+        if let Some(name) = wanted.iter().find(|w| *w != RAYS.0) {
+            return Err(Error::UnknownBuffer {
+                name: name.clone(),
+                known: vec![RAYS.0.to_string()],
+            });
+        }
+        let Some(settings) = &scene.global else {
+            return Err(Error::invalid(
+                "global.method",
+                "ray tracing reads its settings from [global]",
+            ));
+        };
+        let backdrop = scene
+            .render
+            .backdrop
+            .and_then(|b| environments.get(b).cloned().flatten());
+        let view = View::new(&scene.camera, scene.camera.width, scene.camera.height);
+        let tracer = Whitted::new(scene, &self.traced, settings, backdrop.as_deref());
+        let (image, rays) = tracer.render(&view);
+        let buffers = if wanted.is_empty() {
+            Vec::new()
+        } else {
+            vec![Buffer {
+                name: RAYS.0.into(),
+                width: image.width,
+                height: image.height,
+                data: BufferData::Counts(
+                    rays.iter()
+                        .map(|&r| r.min(i32::MAX as u32) as i32)
+                        .collect(),
+                ),
+            }]
+        };
+        Ok(Frame { image, buffers })
+    }
+
+    fn buffers(&self) -> Vec<BufferInfo> {
+        let (name, description) = RAYS;
+        vec![BufferInfo {
+            name: name.into(),
+            description: description.into(),
+        }]
+    }
+}
