@@ -108,5 +108,5 @@ pub use render::{BufferInfo, Frame, Prepasses, Renderer, render};
 pub use scene::MAX_SIDE as MAX_IMAGE_SIDE;
 pub use scene::{
     Camera, DistantLight, Light, LightKind, Material, Object, PointLight, Polygon, PolygonLight,
-    Scene, SphereLight, SpotDistribution, SpotLight, Vertex,
+    Reach, Scene, SphereLight, SpotDistribution, SpotLight, Vertex,
 };

@@ -393,10 +393,7 @@ impl FinalGather {
             let Some(sample) = light.sample(hit.position, u) else {
                 continue;
             };
-            let emitter = match light {
-                Light::Polygon(l) => Some(l.polygon as u32),
-                Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_) => None,
-            };
+            let emitter = light.emitter_polygon().map(|p| p as u32);
             if !self
                 .traced
                 .blocked(hit.position, sample.point, hit.leaving(), emitter)

@@ -5,7 +5,7 @@
 use super::traced_scene::{Leaving, SurfaceHit, TracedScene};
 use crate::geometry::sampling::Stream;
 use crate::scene::lights::DISTANT_REACH;
-use crate::scene::{Light, Reflectance, Scene};
+use crate::scene::{Light, Reach, Reflectance, Scene};
 use crate::shading::light_model::{SurfacePoint, reflected};
 use crate::texture::Interpolation;
 use glam::{DVec2, DVec3, Vec3};
@@ -82,24 +82,23 @@ pub fn lights_at(
         if unshadowed == Vec3::ZERO {
             continue;
         }
-        let clear = match light {
-            Light::Point(_) | Light::Spot(_) => {
-                let at = light.position().expect("a point-like light");
+        let clear = match light.reach() {
+            Reach::Point { at, .. } => {
                 if traced.blocked(position, at, leaving, None) {
                     0.0
                 } else {
                     1.0
                 }
             }
-            Light::Distant(d) => {
-                let far = position - d.direction * DISTANT_REACH;
+            Reach::Direction { direction, .. } => {
+                let far = position - direction * DISTANT_REACH;
                 if traced.blocked(position, far, leaving, None) {
                     0.0
                 } else {
                     1.0
                 }
             }
-            Light::Polygon(_) | Light::Sphere(_) => {
+            Reach::Extended => {
                 let mut stream = Stream::new(l as u64, stream_index);
                 extended_clear(scene, traced, light, position, normal, leaving, &mut stream)
             }
@@ -119,10 +118,7 @@ fn extended_clear(
     leaving: Leaving,
     stream: &mut Stream,
 ) -> f32 {
-    let emitter = match light {
-        Light::Polygon(l) => Some(l.polygon as u32),
-        Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_) => None,
-    };
+    let emitter = light.emitter_polygon().map(|p| p as u32);
     let (mut total, mut clear) = (0.0, 0.0);
     for u in stream.jittered(scene.shadows.light_samples as usize) {
         let Some(sample) = light.sample(position, u) else {

@@ -5,8 +5,8 @@
 //! shrinks; light volumes must agree with it.
 
 use super::single_scattering::{holds, phase, point_integrand, sun_path, transmittance};
-use crate::scene::Light;
 use crate::scene::ray_queries::SceneRays;
+use crate::scene::{Light, Reach};
 use crate::settings::MediumSettings;
 use glam::{DVec3, Vec3};
 
@@ -31,37 +31,36 @@ pub fn inscattered(
     let steps = (end / step).ceil().max(1.0) as usize;
     let h = end / steps as f64;
     let mut total = 0.0;
+    let source = light.reach();
     for i in 0..steps {
         let t = (i as f64 + 0.5) * h;
         let x = eye + direction * t;
         if !holds(medium, x) {
             continue;
         }
-        let term = match light {
-            Light::Distant(l) => {
-                if rays.any_hit(x, x - l.direction * reach, &[]) {
+        let term = match source {
+            Reach::Direction { direction: sun, .. } => {
+                if rays.any_hit(x, x - sun * reach, &[]) {
                     continue;
                 }
                 let along = transmittance(medium, eye, direction, t);
-                let way_in = (-medium.extinction * sun_path(medium, x, l.direction)).exp();
-                phase(medium, l.direction.dot(-direction)) * along * way_in
+                let way_in = (-medium.extinction * sun_path(medium, x, sun)).exp();
+                phase(medium, sun.dot(-direction)) * along * way_in
             }
-            Light::Point(_) | Light::Spot(_) => {
-                let at = light.position().expect("point-like");
+            Reach::Point { at, .. } => {
                 if rays.any_hit(x, at, &[]) {
                     continue;
                 }
                 point_integrand(medium, light, at, eye, direction, t)
             }
-            Light::Polygon(_) | Light::Sphere(_) => return Vec3::ZERO,
+            Reach::Extended => return Vec3::ZERO,
         };
         total += term * h;
     }
-    let colour = match light {
-        Light::Distant(l) => l.irradiance,
-        Light::Point(l) => l.intensity,
-        Light::Spot(l) => l.intensity,
-        Light::Polygon(_) | Light::Sphere(_) => Vec3::ZERO,
+    let colour = match source {
+        Reach::Direction { irradiance, .. } => irradiance,
+        Reach::Point { intensity, .. } => intensity,
+        Reach::Extended => Vec3::ZERO,
     };
     colour * (sigma_s * total) as f32
 }

@@ -29,7 +29,7 @@
 //!   the ray's closest approach to the light, then in lengths growing geometrically
 //!   from the closest-approach distance h (the integrand falls as 1/(h² + s²) there).
 
-use crate::scene::Light;
+use crate::scene::{Light, Reach};
 use crate::settings::{MediumSettings, PhaseFunction};
 use glam::{DVec3, Vec3};
 use std::f64::consts::PI;
@@ -216,21 +216,23 @@ fn inscattered(
         return Vec3::ZERO;
     }
     let mut total = 0.0;
-    let colour = match light {
-        Light::Distant(l) => {
-            let p = phase(medium, l.direction.dot(-direction));
+    let colour = match light.reach() {
+        Reach::Direction {
+            direction: sun,
+            irradiance,
+        } => {
+            let p = phase(medium, sun.dot(-direction));
             for &[a, b] in lit {
                 if let Some((a, b)) = inside(medium, eye, direction, a, b) {
                     // Entry: where the ray enters the medium.
                     let entry = inside(medium, eye, direction, 0.0, b).map_or(0.0, |(e, _)| e);
-                    total += sunlit_integral(medium, eye, direction, l.direction, (a, b), entry);
+                    total += sunlit_integral(medium, eye, direction, sun, (a, b), entry);
                 }
             }
             total *= sigma_s * p;
-            l.irradiance
+            irradiance
         }
-        Light::Point(_) | Light::Spot(_) => {
-            let at = light.position().expect("point-like");
+        Reach::Point { at, intensity } => {
             for &[a, b] in lit {
                 let Some((a, b)) = inside(medium, eye, direction, a, b) else {
                     continue;
@@ -242,13 +244,9 @@ fn inscattered(
                 }
             }
             total *= sigma_s;
-            match light {
-                Light::Point(l) => l.intensity,
-                Light::Spot(l) => l.intensity,
-                Light::Distant(_) | Light::Polygon(_) | Light::Sphere(_) => unreachable!(),
-            }
+            intensity
         }
-        Light::Polygon(_) | Light::Sphere(_) => return Vec3::ZERO,
+        Reach::Extended => return Vec3::ZERO,
     };
     colour * total as f32
 }
@@ -270,10 +268,7 @@ pub fn point_integrand(
     }
     let r = r2.sqrt();
     let travel = -to_light / r;
-    let spot = match light {
-        Light::Spot(l) => l.factor_towards(x),
-        Light::Point(_) | Light::Distant(_) | Light::Polygon(_) | Light::Sphere(_) => 1.0,
-    };
+    let spot = light.cone_factor(x);
     let towards_light = medium_length(medium, x, to_light / r, r);
     let along_ray = medium_length(medium, eye, direction, t);
     phase(medium, travel.dot(-direction))

@@ -9,7 +9,7 @@
 //! shading only), so captures never recurse; loaded and procedural environments are.
 //! A hidden polygon light is hidden with its light.
 
-use crate::scene::{Camera, Light, Scene};
+use crate::scene::{Camera, Scene};
 use crate::texture::environment::cube_map;
 use glam::DVec3;
 
@@ -27,16 +27,7 @@ pub fn without_objects(scene: &Scene, hidden: &[usize]) -> Scene {
     let lights = scene
         .lights
         .iter()
-        .filter_map(|light| match light {
-            Light::Polygon(l) => renumbered[l.polygon].map(|polygon| {
-                let mut l = l.clone();
-                l.polygon = polygon;
-                Light::Polygon(l)
-            }),
-            other @ (Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_)) => {
-                Some(other.clone())
-            }
-        })
+        .filter_map(|light| light.renumbered(&renumbered))
         .collect();
     Scene {
         polygons: kept,

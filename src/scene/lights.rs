@@ -229,6 +229,22 @@ pub enum Light {
     Spot(SpotLight),
 }
 
+/// How a light reaches the scene, for the methods that need only its geometry (hard
+/// shadows, light volumes, media, the tracer's shadow rays): each asks this one
+/// match, not the light's kind.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Reach {
+    /// From a point (point and spot lights), with its radiant intensity (a spot's
+    /// on its axis: `Light::cone_factor` gives the rest).
+    Point { at: DVec3, intensity: Vec3 },
+    /// From a direction (distant lights): the unit direction light travels, and the
+    /// irradiance of a surface facing it.
+    Direction { direction: DVec3, irradiance: Vec3 },
+    /// From an extended emitter (polygon and sphere lights): sampled
+    /// (`Light::sample`).
+    Extended,
+}
+
 /// One point on (or, for a distant light, towards) a light, seen from a receiver.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightSample {
@@ -319,10 +335,74 @@ impl Light {
     /// Where a point-like light (point, spot) sits; `None` for lights with extent or
     /// at infinity.
     pub fn position(&self) -> Option<DVec3> {
+        match self.reach() {
+            Reach::Point { at, .. } => Some(at),
+            Reach::Direction { .. } | Reach::Extended => None,
+        }
+    }
+
+    /// How it reaches the scene: from a point, a direction or an extended emitter.
+    pub fn reach(&self) -> Reach {
         match self {
-            Light::Point(l) => Some(l.position),
-            Light::Spot(l) => Some(l.position),
-            Light::Distant(_) | Light::Polygon(_) | Light::Sphere(_) => None,
+            Light::Point(l) => Reach::Point {
+                at: l.position,
+                intensity: l.intensity,
+            },
+            Light::Spot(l) => Reach::Point {
+                at: l.position,
+                intensity: l.intensity,
+            },
+            Light::Distant(l) => Reach::Direction {
+                direction: l.direction,
+                irradiance: l.irradiance,
+            },
+            Light::Polygon(_) | Light::Sphere(_) => Reach::Extended,
+        }
+    }
+
+    /// The scene polygon the light is, when it is one (a polygon light: rays that
+    /// reach the emitter are not blocked by it).
+    pub fn emitter_polygon(&self) -> Option<usize> {
+        match self {
+            Light::Polygon(l) => Some(l.polygon),
+            Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_) => None,
+        }
+    }
+
+    /// The light moved by `offset`, for the lights that sit somewhere (`None`: a
+    /// distant light has no place, a polygon light is a polygon of the scene).
+    pub fn moved(&self, offset: DVec3) -> Option<Light> {
+        let mut light = self.clone();
+        match &mut light {
+            Light::Point(l) => l.position += offset,
+            Light::Spot(l) => l.position += offset,
+            Light::Sphere(l) => l.centre += offset,
+            Light::Distant(_) | Light::Polygon(_) => return None,
+        }
+        Some(light)
+    }
+
+    /// The light in a scene whose polygons were renumbered by `renumbered` (old id
+    /// to new; `None`: left out, and a polygon light with it).
+    pub fn renumbered(&self, renumbered: &[Option<usize>]) -> Option<Light> {
+        match self {
+            Light::Polygon(l) => renumbered[l.polygon].map(|polygon| {
+                let mut l = l.clone();
+                l.polygon = polygon;
+                Light::Polygon(l)
+            }),
+            Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_) => {
+                Some(self.clone())
+            }
+        }
+    }
+
+    /// The fraction of its intensity a point light sends towards `point`: a spot's
+    /// cone factor, 1 for the others.
+    pub fn cone_factor(&self, point: DVec3) -> f64 {
+        match self {
+            Light::Spot(l) => l.factor_towards(point),
+            Light::Point(_) | Light::Distant(_) | Light::Polygon(_) | Light::Sphere(_) => 1.0,
         }
     }
 

@@ -29,7 +29,7 @@ pub use validate::MAX_SIDE;
 
 pub use build::scene_from_table;
 pub use lights::{
-    DistantLight, Light, LightKind, LightSample, PointLight, PolygonLight, SphereLight,
+    DistantLight, Light, LightKind, LightSample, PointLight, PolygonLight, Reach, SphereLight,
     SpotDistribution, SpotLight,
 };
 

@@ -21,7 +21,7 @@
 
 use super::shadow_volumes::{ShadowQuad, Source, eye_count_from, on_screen, quads_from, reach};
 use crate::raster::{EdgeTable, LitIntervals, ScreenPolygon, View, VisibleSurface, spans_inside};
-use crate::scene::{Light, Scene};
+use crate::scene::{Light, Reach, Scene};
 use rayon::prelude::*;
 
 /// One light's shadow volumes, for its viewing rays.
@@ -34,10 +34,10 @@ pub struct LightVolumes {
 impl LightVolumes {
     /// `None` for a light with no volumes of its kind (polygon, sphere).
     pub fn new(scene: &Scene, light: &Light) -> Option<LightVolumes> {
-        let source = match light {
-            Light::Point(_) | Light::Spot(_) => Source::Point(light.position()?),
-            Light::Distant(l) => Source::Distant(l.direction),
-            Light::Polygon(_) | Light::Sphere(_) => return None,
+        let source = match light.reach() {
+            Reach::Point { at, .. } => Source::Point(at),
+            Reach::Direction { direction, .. } => Source::Distant(direction),
+            Reach::Extended => return None,
         };
         Some(LightVolumes {
             source,

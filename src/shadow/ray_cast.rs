@@ -19,7 +19,7 @@ use crate::geometry::sampling::Stream;
 use crate::raster::{NO_POLYGON, View, VisibleSurface};
 use crate::scene::LightKind;
 use crate::scene::ray_queries::SceneRays;
-use crate::scene::{Light, Scene};
+use crate::scene::{Light, Reach, Scene};
 use crate::settings::ShadowMethod;
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -100,15 +100,14 @@ struct RayCastFrame<'a> {
 impl FrameShadows for RayCastFrame<'_> {
     fn band(&self, band: &VisibleSurface) -> BandShadows {
         let occluders = &self.cast.occluders;
-        let fractions = match &self.cast.light {
-            Light::Point(_) | Light::Spot(_) => {
-                let at = self.cast.light.position().expect("a point-like light");
+        let fractions = match self.cast.light.reach() {
+            Reach::Point { at, .. } => {
                 per_sample(self.scene, self.view, band, at, |_, polygon, position| {
                     !occluders.any_hit(position, at, &[polygon])
                 })
             }
-            Light::Distant(l) => {
-                let back = -l.direction * self.cast.reach;
+            Reach::Direction { direction, .. } => {
+                let back = -direction * self.cast.reach;
                 (0..band.samples.len())
                     .into_par_iter()
                     .map(|k| {
@@ -126,7 +125,7 @@ impl FrameShadows for RayCastFrame<'_> {
                     })
                     .collect()
             }
-            Light::Polygon(_) | Light::Sphere(_) => (0..band.samples.len())
+            Reach::Extended => (0..band.samples.len())
                 .into_par_iter()
                 .map(|k| self.extended(band, k))
                 .collect(),
@@ -157,10 +156,10 @@ impl RayCastFrame<'_> {
         if n.dot(self.view.eye - s.position) < 0.0 {
             n = -n;
         }
-        let emitter = match &cast.light {
-            Light::Polygon(l) => l.polygon as u32,
-            Light::Point(_) | Light::Distant(_) | Light::Sphere(_) | Light::Spot(_) => NO_POLYGON,
-        };
+        let emitter = cast
+            .light
+            .emitter_polygon()
+            .map_or(NO_POLYGON, |p| p as u32);
         let (mut total, mut clear) = (0.0, 0.0);
         for u in stream.jittered(cast.samples as usize) {
             let Some(sample) = cast.light.sample(s.position, u) else {

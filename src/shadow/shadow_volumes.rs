@@ -37,7 +37,7 @@ use crate::raster::{
 };
 use crate::scene::Scene;
 use crate::scene::ray_queries::segment_meets_polygon;
-use crate::scene::{Light, LightKind};
+use crate::scene::{Light, LightKind, Reach};
 use crate::settings::ShadowMethod;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -128,11 +128,10 @@ pub enum Source {
 impl Source {
     /// Where `light`'s volumes start: its direction if distant, else its position.
     pub fn of(light: &Light) -> Source {
-        match light {
-            Light::Distant(sun) => Source::Distant(sun.direction),
-            Light::Point(_) | Light::Polygon(_) | Light::Sphere(_) | Light::Spot(_) => {
-                Source::Point(light.position().expect("checked"))
-            }
+        match light.reach() {
+            Reach::Direction { direction, .. } => Source::Distant(direction),
+            Reach::Point { at, .. } => Source::Point(at),
+            Reach::Extended => Source::Point(light.position().expect("checked")),
         }
     }
 

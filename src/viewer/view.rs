@@ -13,7 +13,7 @@ use crate::catalogue::{self, Algorithm};
 use crate::error::{Error, Result};
 use crate::image_io::Image;
 use crate::render::{Frame, Renderer};
-use crate::scene::{Light, Scene};
+use crate::scene::Scene;
 use crate::settings::Solver;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -171,7 +171,7 @@ impl View {
             let mut renderer = Renderer::new(scene);
             renderer.check()?;
             for (index, offset) in self.offsets.iter().enumerate() {
-                if let Some(light) = moved(&self.scene.lights[index], *offset) {
+                if let Some(light) = self.scene.lights[index].moved(*offset) {
                     renderer.set_light(index, light)?;
                 }
             }
@@ -205,7 +205,7 @@ impl View {
                 message: format!("the scene has no light {index}"),
             });
         };
-        let Some(light) = moved(light, offset) else {
+        let Some(light) = light.moved(offset) else {
             return Ok(offset == DVec3::ZERO);
         };
         if self.offsets[index] == offset {
@@ -403,21 +403,9 @@ impl View {
             .lights
             .iter()
             .enumerate()
-            .map(|(i, l)| (l.label(i), moved(l, DVec3::ZERO).is_some()))
+            .map(|(i, l)| (l.label(i), l.moved(DVec3::ZERO).is_some()))
             .collect()
     }
-}
-
-/// `light` moved by `offset`, for the lights that sit at a point.
-fn moved(light: &Light, offset: DVec3) -> Option<Light> {
-    let mut light = light.clone();
-    match &mut light {
-        Light::Point(l) => l.position += offset,
-        Light::Spot(l) => l.position += offset,
-        Light::Sphere(l) => l.centre += offset,
-        Light::Distant(_) | Light::Polygon(_) => return None,
-    }
-    Some(light)
 }
 
 /// The scene's bounding box.
