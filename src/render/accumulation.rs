@@ -13,7 +13,8 @@
 //! horizontal or the vertical is seen at N² + 1 levels of coverage where the regular
 //! N × N grid gives N + 1.
 
-use super::frame::{Frame, Pass, render_pass};
+use super::frame::{Pass, render_pass};
+use super::output::Frame;
 use super::plan::FramePlan;
 use crate::error::Result;
 use crate::image_io::Image;

@@ -4,6 +4,7 @@
 //! (shadow-map faces, hemi-cube item buffers) at their own size.
 
 use super::integrators::{CACHE_RECORDS, ScanLine, declares_buffer};
+use super::output::BufferInfo;
 use super::plan::FramePlan;
 use crate::error::{Error, Result};
 use crate::image_io::{Buffer, BufferData};
@@ -12,15 +13,6 @@ use crate::scene::{Light, Scene};
 use crate::settings::MediumMethod;
 use crate::shading::FrameShading;
 use crate::shadow::{self, CountBuffer};
-
-/// A buffer a scene's frame can give, and what it holds.
-#[derive(Clone, Debug, PartialEq)]
-pub struct BufferInfo {
-    /// The name a frame is asked for it by.
-    pub name: String,
-    /// What it holds, in a line.
-    pub description: String,
-}
 
 /// A per-sample buffer.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,28 +2,14 @@
 
 use super::buffers::{FrameBuffers, MediumBand};
 use super::medium::MediumWork;
+use super::output::Frame;
 use super::plan::FramePlan;
 use crate::error::{Error, Result};
-use crate::image_io::{Buffer, Image};
+use crate::image_io::Image;
 use crate::raster::{EdgeTable, Visibility, rasterize_rows, sample_view, uv_gradients};
 use crate::scene::Scene;
 use crate::shading::FrameShading;
 use glam::DVec2;
-
-/// A frame: its linear radiance image and the buffers asked for.
-pub struct Frame {
-    /// Linear radiance, pixel by pixel.
-    pub image: Image,
-    /// The buffers asked for, in the order asked.
-    pub buffers: Vec<Buffer>,
-}
-
-impl Frame {
-    /// The buffer named `name`, if the frame made it.
-    pub fn buffer(&self, name: &str) -> Option<&Buffer> {
-        self.buffers.iter().find(|b| b.name == name)
-    }
-}
 
 /// Samples per band when the scene does not choose its band height: about 5 MB of
 /// visible-surface buffer, which shading reads back while it is still in the cache

@@ -15,12 +15,13 @@ pub mod capture;
 mod frame;
 pub mod integrators;
 mod medium;
+mod output;
 mod plan;
 mod renderer;
 
-pub use buffers::BufferInfo;
-pub use frame::{Frame, band_rows};
+pub use frame::band_rows;
 pub use integrators::Integrator;
+pub use output::{BufferInfo, Frame};
 pub use plan::EnvironmentMaps;
 pub use renderer::{Prepasses, Renderer, capture_cube};
 

@@ -4,14 +4,11 @@
 //! which lights are shadowed and by what, which environments are shown, what the
 //! medium marches against, which element's hemi-cube is shown.
 
+pub use super::integrators::EnvironmentMaps;
 use super::integrators::{Declaration, ScanLine};
 use crate::shadow::{LightShadows, SceneOccluders};
-use crate::texture::environment::EnvironmentMap;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-
-/// Per scene environment, its map (`None`: not shown).
-pub type EnvironmentMaps = Arc<[Option<Arc<EnvironmentMap>>]>;
 
 pub struct FramePlan {
     /// How the frame is lit: the integrator, and what it declares of itself.

@@ -9,12 +9,13 @@
 //! shadows; changing the shadow settings, every light's shadows.
 
 use super::accumulation::render_rotated_grid;
-use super::buffers::{BufferInfo, available};
+use super::buffers::available;
 use super::capture::{face_cameras, without_objects};
-use super::frame::{Frame, render_frame};
+use super::frame::render_frame;
 use super::integrators::{
     Declaration, Integrator, Kept, Lighting, Role, ScanLine, check_keys, declaration,
 };
+use super::output::{BufferInfo, Frame};
 use super::plan::{EnvironmentMaps, FramePlan};
 use crate::error::{Error, Result};
 use crate::image_io::Image;

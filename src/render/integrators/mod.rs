@@ -26,8 +26,7 @@ mod two_pass;
 pub(super) use direct::DirectLighting;
 pub(super) use solution::CACHE_RECORDS;
 
-use super::frame::Frame;
-use super::plan::EnvironmentMaps;
+use super::output::Frame;
 use crate::error::{Error, Result};
 use crate::image_io::Buffer;
 use crate::radiosity::Solution;
@@ -38,7 +37,10 @@ use crate::shading::FrameShading;
 use glam::Vec3;
 use std::sync::Arc;
 
-pub use super::buffers::BufferInfo;
+pub use super::output::BufferInfo;
+
+/// Per scene environment, its map as a frame shows it (`None`: not shown).
+pub type EnvironmentMaps = Arc<[Option<Arc<crate::texture::environment::EnvironmentMap>>]>;
 
 /// Every integrator.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -3,14 +3,15 @@
 //! through the pixels' corners, split where they differ, instead of the scan-line
 //! pass. Chosen by `[global] method = "ray-tracing"`.
 
-use super::{BufferInfo, Declaration, Integrator, Kept, Lighting, OwnFrame, ReadsSolution, Role};
+use super::{
+    BufferInfo, Declaration, EnvironmentMaps, Frame, Integrator, Kept, Lighting, OwnFrame,
+    ReadsSolution, Role,
+};
 use crate::error::{Error, Result};
 use crate::global::TracedScene;
 use crate::global::whitted::Whitted;
 use crate::image_io::{Buffer, BufferData};
 use crate::raster::View;
-use crate::render::frame::Frame;
-use crate::render::plan::EnvironmentMaps;
 use crate::scene::Scene;
 use crate::settings::GlobalMethod;
 use crate::settings::ShadowMethod;

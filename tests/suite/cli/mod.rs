@@ -989,12 +989,12 @@ fn bad_lights() {
 #[test]
 fn form_factors_prints_the_matrix_as_json() {
     // Two unit squares facing each other at distance 1: the closed form is 0.1998.
-    let text = "[camera]\neye = [0.0, 0.5, 3.0]\nlook_at = [0.0, 0.5, 0.0]\nfov_y = 40.0\nwidth = 8\nheight = 8\n\
-        [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+    let text = camera([0.0, 0.5, 3.0], [0.0, 0.5, 0.0], 40.0, 8, 8)
+        + "[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
         [[objects]]\nshape = \"quad\"\nname = \"floor\"\nmaterial = \"grey\"\n\
         [[objects]]\nshape = \"quad\"\nname = \"ceiling\"\nmaterial = \"grey\"\n\
         transform = [{ rotate = { axis = [1.0, 0.0, 0.0], degrees = 180.0 } }, { translate = [0.0, 1.0, 0.0] }]\n";
-    let dir = workspace(&[("pair.toml", text)]);
+    let dir = workspace(&[("pair.toml", &text)]);
     let run = lumiere(
         &[
             "form-factors",

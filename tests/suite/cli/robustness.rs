@@ -269,11 +269,11 @@ fn a_scene_of_200000_objects_loads_in_linear_time() {
             y + 0.004
         );
     }
-    let scene = "[camera]\neye = [2, 1.6, 5]\nlook_at = [2, 1.6, 0]\nfov_y = 60\nwidth = 32\nheight = 24\n\n\
-                 [materials.white]\ndiffuse = [0.7, 0.7, 0.7]\n\n\
+    let scene = camera([2.0, 1.6, 5.0], [2.0, 1.6, 0.0], 60.0, 32, 24)
+        + "[materials.white]\ndiffuse = [0.7, 0.7, 0.7]\n\n\
                  [[lights]]\ntype = \"point\"\nposition = [2, 1.6, 4]\nintensity = [10, 10, 10]\n\n\
                  [[objects]]\nshape = \"obj\"\nfile = \"many.obj\"\nmaterial = \"white\"\n";
-    let dir = workspace(&[("many.obj", &obj), ("many.toml", scene)]);
+    let dir = workspace(&[("many.obj", &obj), ("many.toml", &scene)]);
     let run = lumiere_within_30_s(&["render", "many.toml", "-o", "many.png"], dir.path());
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert!(dir.path().join("many.png").exists());

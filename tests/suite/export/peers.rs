@@ -290,8 +290,8 @@ fn a_mitsuba_export_replaces_its_meshes_whole() {
         d,
     );
     let many = meshes(d);
-    let one = "[camera]\neye = [0.0, 1.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 16\nheight = 12\n\
-               [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+    let one = support::camera([0.0, 1.0, 3.0], [0.0, 0.0, 0.0], 40.0, 16, 12)
+        + "[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
                [[lights]]\ntype = \"point\"\nposition = [0.0, 2.0, 2.0]\nintensity = [5.0, 5.0, 5.0]\n\
                [[objects]]\nshape = \"quad\"\nmaterial = \"grey\"\n";
     std::fs::write(d.join("one.toml"), one).unwrap();

@@ -187,15 +187,13 @@ mod scenes {
 
     fn load(s: f64, flatten: f64, light: DVec3) -> lumiere::Result<Scene> {
         let text = format!(
-            "[camera]\neye = [0.0, {e}, {f}]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 24\nheight = 24\n\
-             [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+            "{}[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
              [[lights]]\ntype = \"point\"\nposition = [{lx:?}, {ly:?}, {lz:?}]\nintensity = [1.0, 1.0, 1.0]\n\
              [[objects]]\nshape = \"box\"\nname = \"box\"\nmaterial = \"grey\"\ntransform = [{{ scale = [{s:?}, {fy:?}, {s:?}] }}]\n\
              [[objects]]\nshape = \"sphere\"\nname = \"ball\"\nmaterial = \"grey\"\nresolution = 8\ntransform = [{{ scale = {h:?} }}, {{ translate = [{t:?}, 0.0, 0.0] }}]\n\
              [[objects]]\nshape = \"quad\"\nname = \"floor\"\nmaterial = \"grey\"\ntransform = [{{ scale = {q:?} }}, {{ translate = [0.0, {d:?}, 0.0] }}]\n\
              [[objects]]\nshape = \"quad\"\nname = \"floor again\"\nmaterial = \"grey\"\ntransform = [{{ scale = {q:?} }}, {{ translate = [0.0, {d:?}, 0.0] }}]\n",
-            e = 3.0 * s,
-            f = 5.0 * s,
+            crate::support::camera([0.0, 3.0 * s, 5.0 * s], [0.0, 0.0, 0.0], 40.0, 24, 24),
             lx = light.x * s,
             ly = light.y * s,
             lz = light.z * s,

@@ -35,11 +35,13 @@ fn square(axis: usize, at: f64) -> [DVec3; 4] {
     ]
 }
 
-const CAMERA: &str = "[camera]\neye = [0.5, 0.5, -3.0]\nlook_at = [0.5, 0.5, 0.5]\nfov_y = 40.0\nwidth = 16\nheight = 16\n\n";
+fn camera() -> String {
+    support::camera([0.5, 0.5, -3.0], [0.5, 0.5, 0.5], 40.0, 16, 16)
+}
 
 /// The unit cube's six walls facing in, of material `wall`, after `head`.
 fn cube(head: &str) -> Scene {
-    let mut text = format!("{CAMERA}{head}");
+    let mut text = format!("{}{head}", camera());
     for axis in 0..3 {
         let mut inward = DVec3::ZERO;
         inward[axis] = 1.0;
@@ -65,7 +67,8 @@ fn lambert(x: DVec3, n: DVec3, corners: &[DVec3], radiance: f64) -> f64 {
 /// A floor and, above it, an emitting unit square at height 1 over [0, 1]².
 fn floor_and_square() -> (Scene, Vec<DVec3>) {
     let mut text = format!(
-        "{CAMERA}[materials.floor]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n"
+        "{}[materials.floor]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n",
+        camera()
     );
     let floor = [
         DVec3::new(-3.0, 0.0, -3.0),
@@ -214,7 +217,8 @@ fn at_element_centres_the_gather_is_the_solutions_own_irradiance() {
     // convergence; the gather at each floor element's centre against what the
     // solution gathered there itself, Σ_j F_ej (B_j − E_j) = (B_e − E_e − D_e)/ρ_e.
     let mut text = format!(
-        "{CAMERA}[radiosity]\nsolver = \"gathering\"\nresolution = 256\npatch_size = 0.2\nelement_size = 0.2\ntolerance = 1e-9\ndisplay = \"flat\"\n\n[global]\nmethod = \"two-pass\"\nexact_direct = true\n\n[global.final_gather]\nrays = 16384\n\n[materials.wall]\ndiffuse = [0.6, 0.5, 0.4]\n\n[materials.lamp]\nemission = [5.0, 5.0, 5.0]\n\n"
+        "{}[radiosity]\nsolver = \"gathering\"\nresolution = 256\npatch_size = 0.2\nelement_size = 0.2\ntolerance = 1e-9\ndisplay = \"flat\"\n\n[global]\nmethod = \"two-pass\"\nexact_direct = true\n\n[global.final_gather]\nrays = 16384\n\n[materials.wall]\ndiffuse = [0.6, 0.5, 0.4]\n\n[materials.lamp]\nemission = [5.0, 5.0, 5.0]\n\n",
+        camera()
     );
     for axis in 0..3 {
         let mut inward = DVec3::ZERO;
@@ -379,7 +383,8 @@ fn the_cache_agrees_with_gathering_everywhere_and_has_no_seams() {
 #[test]
 fn a_gather_through_a_mirror_finds_the_mirrored_lamp() {
     let mut text = format!(
-        "{CAMERA}[radiosity]\nsolver = \"gathering\"\n\n[global]\nmethod = \"two-pass\"\nexact_direct = true\n\n[global.final_gather]\nrays = 65536\n\n[materials.floor]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.mirror]\nmirror = [0.8, 0.8, 0.8]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n"
+        "{}[radiosity]\nsolver = \"gathering\"\n\n[global]\nmethod = \"two-pass\"\nexact_direct = true\n\n[global.final_gather]\nrays = 65536\n\n[materials.floor]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.mirror]\nmirror = [0.8, 0.8, 0.8]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n",
+        camera()
     );
     let plane = |y: f64| {
         [

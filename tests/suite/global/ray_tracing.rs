@@ -1311,11 +1311,10 @@ fn a_small_sphere_between_the_corners_is_found_by_its_bounding_sphere() {
     // pixel (8, 8), between its corners.
     let half = 0.5 * 20.0 * 20f64.to_radians().tan() / 16.0;
     let text = format!(
-        "[camera]\neye = [{}, {half}, 10.0]\nlook_at = [{}, {half}, 0.0]\nfov_y = 40.0\nwidth = 16\nheight = 16\n\
-         [materials.glow]\nemission = [1.0, 1.0, 1.0]\n\
+        "{}[materials.glow]\nemission = [1.0, 1.0, 1.0]\n\
          [[objects]]\nshape = \"sphere\"\nname = \"ball\"\nmaterial = \"glow\"\nresolution = 12\n\
          transform = [{{ scale = 0.045 }}]\n",
-        -half, -half
+        support::camera([-half, half, 10.0], [-half, half, 0.0], 40.0, 16, 16)
     );
     let scene = scene_from_text(&text, &[]);
     let view = View::new(&scene.camera, 16, 16);

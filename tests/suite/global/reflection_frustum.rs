@@ -32,7 +32,8 @@ fn centre_pixel(resolution: u32) -> f64 {
         })
         .collect();
     let mut text = format!(
-        "[camera]\neye = [0.0, 1.0, -1.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 5.0\nwidth = 15\nheight = 15\n\n[render]\nsupersample = 1\n\n[global]\nmethod = \"two-pass\"\nfrustum_resolution = {resolution}\n\n[radiosity]\nsolver = \"gathering\"\n\n[materials.floor]\ndiffuse = [0.0, 0.0, 0.0]\nmirror = [{MIRROR}, {MIRROR}, {MIRROR}]\ngloss = {EXPONENT}\n\n[materials.glow]\ndiffuse = [0.0, 0.0, 0.0]\nemission = [1.0, 1.0, 1.0]\n\n"
+        "{}[render]\nsupersample = 1\n\n[global]\nmethod = \"two-pass\"\nfrustum_resolution = {resolution}\n\n[radiosity]\nsolver = \"gathering\"\n\n[materials.floor]\ndiffuse = [0.0, 0.0, 0.0]\nmirror = [{MIRROR}, {MIRROR}, {MIRROR}]\ngloss = {EXPONENT}\n\n[materials.glow]\ndiffuse = [0.0, 0.0, 0.0]\nemission = [1.0, 1.0, 1.0]\n\n",
+        support::camera([0.0, 1.0, -1.0], [0.0, 0.0, 0.0], 5.0, 15, 15)
     );
     text += &polygon(
         "floor",

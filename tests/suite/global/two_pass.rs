@@ -45,7 +45,9 @@ fn rectangle(a: DVec3, b: DVec3) -> [DVec3; 4] {
     }
 }
 
-const CAMERA: &str = "[camera]\neye = [0.5, 0.5, -3.0]\nlook_at = [0.5, 0.5, 0.5]\nfov_y = 40.0\nwidth = 16\nheight = 16\n\n";
+fn camera() -> String {
+    support::camera([0.5, 0.5, -3.0], [0.5, 0.5, 0.5], 40.0, 16, 16)
+}
 
 /// The receiver index of the (one-patch) object named `name`.
 fn receiver_of(scene: &Scene, mesh: &Mesh, receivers: &Receivers, name: &str) -> usize {
@@ -91,7 +93,8 @@ fn all_mechanisms_off_but_diffuse_diffuse_is_plain_radiosity_through_the_extende
 /// P = 0 (normal +z), and for the pane a receiver `k` beyond it.
 fn window_scene(window: &str) -> Scene {
     let mut text = format!(
-        "{CAMERA}[global]\nmethod = \"rushmeier-torrance\"\n\n[materials.window]\n{window}\n\n[materials.white]\ndiffuse = [0.5, 0.5, 0.5]\n\n"
+        "{}[global]\nmethod = \"rushmeier-torrance\"\n\n[materials.window]\n{window}\n\n[materials.white]\ndiffuse = [0.5, 0.5, 0.5]\n\n",
+        camera()
     );
     text += &polygon(
         "window",
@@ -166,7 +169,10 @@ fn the_factor_by_a_mirror_is_its_reflectance_times_the_factor_to_the_mirrored_re
     // Against the hemi-cube's factor to a real copy of j where the mirror puts its
     // image (no mirror): the same cells, up to rounding at their edges.
     let copy = {
-        let mut text = format!("{CAMERA}[materials.white]\ndiffuse = [0.5, 0.5, 0.5]\n\n");
+        let mut text = format!(
+            "{}[materials.white]\ndiffuse = [0.5, 0.5, 0.5]\n\n",
+            camera()
+        );
         let c = &mirrored;
         text += &polygon("copy", "white", [c[0], c[1], c[2], c[3]], -DVec3::Z);
         let scene = scene_from_text(&text, &[]);
@@ -234,7 +240,8 @@ fn a_mirror_seen_in_a_mirror_multiplies_the_reflectances() {
     // Two parallel mirrors x = 1 (facing −x) and x = −1 (facing +x): a receiver above
     // the point is seen once in each and, at depth 2, in each after the other.
     let mut text = format!(
-        "{CAMERA}[global]\nmethod = \"two-pass\"\n\n[materials.a]\nmirror = [0.5, 0.5, 0.5]\n\n[materials.b]\nmirror = [0.8, 0.8, 0.8]\n\n[materials.white]\ndiffuse = [0.5, 0.5, 0.5]\n\n"
+        "{}[global]\nmethod = \"two-pass\"\n\n[materials.a]\nmirror = [0.5, 0.5, 0.5]\n\n[materials.b]\nmirror = [0.8, 0.8, 0.8]\n\n[materials.white]\ndiffuse = [0.5, 0.5, 0.5]\n\n",
+        camera()
     );
     text += &polygon(
         "a",
@@ -290,7 +297,10 @@ fn a_mirror_seen_in_a_mirror_multiplies_the_reflectances() {
     // The hemi-cube's factors to real copies where the mirrors put the images: the
     // same cells, up to rounding at their edges.
     let copies = {
-        let mut text = format!("{CAMERA}[materials.white]\ndiffuse = [0.5, 0.5, 0.5]\n\n");
+        let mut text = format!(
+            "{}[materials.white]\ndiffuse = [0.5, 0.5, 0.5]\n\n",
+            camera()
+        );
         for (name, (dx, flip)) in [
             ("a", (2.0, true)),
             ("b", (-2.0, true)),
@@ -337,7 +347,8 @@ fn a_mirror_seen_in_a_mirror_multiplies_the_reflectances() {
 #[test]
 fn a_curved_mirror_is_refused_by_the_first_pass() {
     let text = format!(
-        "{CAMERA}[global]\nmethod = \"two-pass\"\n\n[radiosity]\nsolver = \"gathering\"\n\n[materials.m]\nmirror = [0.9, 0.9, 0.9]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[[objects]]\nshape = \"sphere\"\nname = \"ball\"\nmaterial = \"m\"\nresolution = 8\n\n"
+        "{}[global]\nmethod = \"two-pass\"\n\n[radiosity]\nsolver = \"gathering\"\n\n[materials.m]\nmirror = [0.9, 0.9, 0.9]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[[objects]]\nshape = \"sphere\"\nname = \"ball\"\nmaterial = \"m\"\nresolution = 8\n\n",
+        camera()
     ) + &polygon(
         "lamp",
         "lamp",
@@ -359,7 +370,8 @@ const GAP: f64 = 0.01;
 
 fn two_rooms(tau: f64) -> Scene {
     let mut text = format!(
-        "{CAMERA}[global]\nmethod = \"rushmeier-torrance\"\n\n[radiosity]\nsolver = \"gathering\"\nresolution = 128\nelement_size = 0.125\n\n[materials.wall]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[materials.panel]\ndiffuse = [0.3, 0.3, 0.3]\ntranslucence = [{tau}, {tau}, {tau}]\n\n"
+        "{}[global]\nmethod = \"rushmeier-torrance\"\n\n[radiosity]\nsolver = \"gathering\"\nresolution = 128\nelement_size = 0.125\n\n[materials.wall]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[materials.panel]\ndiffuse = [0.3, 0.3, 0.3]\ntranslucence = [{tau}, {tau}, {tau}]\n\n",
+        camera()
     );
     for (room, x0) in [("a", 0.0), ("b", 1.0 + GAP)] {
         let x1 = x0 + 1.0;
@@ -599,7 +611,8 @@ fn a_closed_room_balances_emitted_and_absorbed_power() {
             ("diffuse = [0.5, 0.5, 0.5]", "diffuse = [0.5, 0.5, 0.5]")
         };
         let mut text = format!(
-            "{CAMERA}[global]\nmethod = \"rushmeier-torrance\"\n\n[radiosity]\nsolver = \"gathering\"\nresolution = 128\nelement_size = 0.125\ntolerance = 1e-9\n\n[materials.wall]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[materials.mirror]\n{mirror}\n\n[materials.panel]\n{panel}\n\n"
+            "{}[global]\nmethod = \"rushmeier-torrance\"\n\n[radiosity]\nsolver = \"gathering\"\nresolution = 128\nelement_size = 0.125\ntolerance = 1e-9\n\n[materials.wall]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[materials.mirror]\n{mirror}\n\n[materials.panel]\n{panel}\n\n",
+            camera()
         );
         let mut wall = |name: &str, material: &str, a: DVec3, b: DVec3, inward: DVec3| {
             text += &polygon(name, material, rectangle(a, b), inward);
@@ -716,7 +729,8 @@ fn the_reflected_spot_is_lit_by_the_mirrored_lamp_times_the_mirror_reflectance()
         "[\"diffuse-diffuse\", \"specular-diffuse\"]",
     ] {
         let mut text = format!(
-            "{CAMERA}[global]\nmethod = \"two-pass\"\nmechanisms = {mechanisms}\n\n[radiosity]\nsolver = \"gathering\"\nresolution = 256\nelement_size = 0.25\n\n[materials.floor]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[materials.mirror]\nmirror = [0.9, 0.9, 0.9]\n\n"
+            "{}[global]\nmethod = \"two-pass\"\nmechanisms = {mechanisms}\n\n[radiosity]\nsolver = \"gathering\"\nresolution = 256\nelement_size = 0.25\n\n[materials.floor]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[materials.mirror]\nmirror = [0.9, 0.9, 0.9]\n\n",
+            camera()
         );
         text += &polygon(
             "floor",
@@ -813,7 +827,7 @@ fn bad_global_illumination_input_is_refused_in_one_line() {
         (
             "ray-tracing",
             &["global.frustum_resolution=8"],
-            &["global.frustum_resolution = 8", "two-pass"],
+            &["global.frustum_resolution is read by two-pass", "ray-tracing"],
         ),
         (
             "ray-tracing",
@@ -847,7 +861,8 @@ fn bad_global_illumination_input_is_refused_in_one_line() {
 fn a_pane_seen_from_behind_by_a_second_pass_ray_transmits() {
     let image = |second_faces_eye: Option<bool>| {
         let mut text = format!(
-            "{CAMERA}[global]\nmethod = \"rushmeier-torrance\"\n\n[radiosity]\nsolver = \"gathering\"\n\n[materials.first]\ntransmittance = [0.8, 0.8, 0.8]\n\n[materials.second]\ntransmittance = [0.5, 0.5, 0.5]\n\n[materials.glow]\nemission = [1.0, 1.0, 1.0]\n\n"
+            "{}[global]\nmethod = \"rushmeier-torrance\"\n\n[radiosity]\nsolver = \"gathering\"\n\n[materials.first]\ntransmittance = [0.8, 0.8, 0.8]\n\n[materials.second]\ntransmittance = [0.5, 0.5, 0.5]\n\n[materials.glow]\nemission = [1.0, 1.0, 1.0]\n\n",
+            camera()
         );
         if let Some(faces_eye) = second_faces_eye {
             text += &polygon(
@@ -931,7 +946,8 @@ fn light_reaching_a_translucent_panel_from_behind_by_a_mirror_or_a_pane_is_the_h
         ("pane", "transmittance = [0.7, 0.7, 0.7]", -2.0, 0.7),
     ] {
         let mut text = format!(
-            "{CAMERA}[global]\nmethod = \"rushmeier-torrance\"\n\n[radiosity]\nsolver = \"gathering\"\nresolution = 256\nelement_size = 0.125\n\n[materials.panel]\ndiffuse = [0.0, 0.0, 0.0]\ntranslucence = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[materials.window]\n{material}\n\n"
+            "{}[global]\nmethod = \"rushmeier-torrance\"\n\n[radiosity]\nsolver = \"gathering\"\nresolution = 256\nelement_size = 0.125\n\n[materials.panel]\ndiffuse = [0.0, 0.0, 0.0]\ntranslucence = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[materials.window]\n{material}\n\n",
+            camera()
         );
         text += &polygon(
             "panel",
@@ -983,7 +999,8 @@ fn light_reaching_a_translucent_panel_from_behind_by_a_mirror_or_a_pane_is_the_h
 fn the_second_pass_goes_through_as_many_panes_as_its_depth() {
     let centre = |depth: u32| {
         let mut text = format!(
-            "{CAMERA}[global]\nmethod = \"rushmeier-torrance\"\ndepth = {depth}\n\n[radiosity]\nsolver = \"gathering\"\n\n[materials.first]\ntransmittance = [0.8, 0.8, 0.8]\n\n[materials.second]\ntransmittance = [0.5, 0.5, 0.5]\n\n[materials.glow]\nemission = [1.0, 1.0, 1.0]\n\n"
+            "{}[global]\nmethod = \"rushmeier-torrance\"\ndepth = {depth}\n\n[radiosity]\nsolver = \"gathering\"\n\n[materials.first]\ntransmittance = [0.8, 0.8, 0.8]\n\n[materials.second]\ntransmittance = [0.5, 0.5, 0.5]\n\n[materials.glow]\nemission = [1.0, 1.0, 1.0]\n\n",
+            camera()
         );
         for (name, z) in [("first", 0.0), ("second", 1.0)] {
             text += &polygon(
@@ -1025,7 +1042,8 @@ fn a_texture_scales_what_a_mirror_shows_as_it_scales_the_wall() {
             ""
         };
         let mut text = format!(
-            "[camera]\neye = [0.2, 0.5, 0.15]\nlook_at = [1.0, 0.45, 0.7]\nfov_y = 70.0\nwidth = 32\nheight = 32\n\n[render]\nsupersample = 1\n\n[global]\nmethod = \"two-pass\"\n\n[radiosity]\nsolver = \"gathering\"\nelement_size = 0.25\n\n[materials.lamp]\nemission = [4.0, 4.0, 4.0]\n\n[materials.mirror]\nmirror = [0.8, 0.8, 0.8]\n\n[materials.wall]\ndiffuse = [0.5, 0.4, 0.3]\n{texture}\n"
+            "{}[render]\nsupersample = 1\n\n[global]\nmethod = \"two-pass\"\n\n[radiosity]\nsolver = \"gathering\"\nelement_size = 0.25\n\n[materials.lamp]\nemission = [4.0, 4.0, 4.0]\n\n[materials.mirror]\nmirror = [0.8, 0.8, 0.8]\n\n[materials.wall]\ndiffuse = [0.5, 0.4, 0.3]\n{texture}\n",
+            support::camera([0.2, 0.5, 0.15], [1.0, 0.45, 0.7], 70.0, 32, 32)
         );
         text += &unit_cube_walls("wall");
         text += &polygon(

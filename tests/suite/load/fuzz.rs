@@ -29,15 +29,11 @@ fn config() -> ProptestConfig {
     }
 }
 
-const SCENE: &str = r#"
-[camera]
-eye = [0.0, 1.0, 4.0]
-look_at = [0.0, 0.0, 0.0]
-fov_y = 40.0
-width = 16
-height = 12
-
-[render]
+/// The same bytes as ever (a leading newline), as the mutations are placed by offset.
+fn scene_text() -> String {
+    "\n".to_string()
+        + &support::camera([0.0, 1.0, 4.0], [0.0, 0.0, 0.0], 40.0, 16, 12)
+        + r#"[render]
 shading = "gouraud"
 supersample = 2
 
@@ -74,7 +70,8 @@ resolution = 8
 shape = "obj"
 name = "model"
 file = "m.obj"
-"#;
+"#
+}
 
 const OBJ: &str = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\nusemtl red\nf 1/1/1 2/2/1 3/3/1 4/1/1\n";
 const MTL: &str = "newmtl red\nKd 0.6 0.1 0.1\nKe 0 0 0\n";
@@ -142,7 +139,7 @@ proptest! {
     ) {
         let files = files(OBJ, MTL);
         load(&noise, &files, &[]);
-        load(&mutate(SCENE, at, length, &insert), &files, &[]);
+        load(&mutate(&scene_text(), at, length, &insert), &files, &[]);
     }
 
     /// `--set` assignments on a valid scene.
@@ -158,8 +155,8 @@ proptest! {
         ],
         value in token(),
     ) {
-        load(SCENE, &files(OBJ, MTL), &[format!("{key}={value}")]);
-        load(SCENE, &files(OBJ, MTL), &[format!("{key}{value}")]);
+        load(&scene_text(), &files(OBJ, MTL), &[format!("{key}={value}")]);
+        load(&scene_text(), &files(OBJ, MTL), &[format!("{key}{value}")]);
     }
 
     /// OBJ and MTL files: mutations of a valid pair, and arbitrary text.
@@ -170,9 +167,9 @@ proptest! {
         insert in prop_oneof![token(), Just("f 1 2 9\n".to_string()), Just("v nan 0 0\n".to_string()), Just("f -1 -2 -3\n".to_string())],
         noise in "\\PC{0,120}",
     ) {
-        load(SCENE, &files(&mutate(OBJ, at, length, &insert), MTL), &[]);
-        load(SCENE, &files(OBJ, &mutate(MTL, at, length, &insert)), &[]);
-        load(SCENE, &files(&noise, &noise), &[]);
+        load(&scene_text(), &files(&mutate(OBJ, at, length, &insert), MTL), &[]);
+        load(&scene_text(), &files(OBJ, &mutate(MTL, at, length, &insert)), &[]);
+        load(&scene_text(), &files(&noise, &noise), &[]);
     }
 
     /// PFM: headers with arbitrary sizes and scales, and arbitrary bytes after them.
@@ -214,7 +211,7 @@ proptest! {
 #[test]
 fn a_short_mtl_colour_is_refused_by_line() {
     let mtl = "newmtl red\nKd 0.6 0.1\n";
-    let table = tables::parse(SCENE, "fuzz.toml").unwrap();
+    let table = tables::parse(&scene_text(), "fuzz.toml").unwrap();
     let error = scene_from_table(table, &files(OBJ, mtl)).err().unwrap();
     let chain = error_line(&error);
     assert!(
@@ -228,7 +225,7 @@ fn a_short_mtl_colour_is_refused_by_line() {
 #[test]
 fn messages_name_the_real_cause() {
     let obj = "mtllib m.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv nan 1 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n";
-    let table = tables::parse(SCENE, "fuzz.toml").unwrap();
+    let table = tables::parse(&scene_text(), "fuzz.toml").unwrap();
     let scene = scene_from_table(table, &files(obj, MTL)).unwrap();
     assert!(
         scene
@@ -239,7 +236,7 @@ fn messages_name_the_real_cause() {
         scene.warnings
     );
     assert!(!scene.warnings.iter().any(|w| w.contains("zero area")));
-    let text = SCENE.replace(
+    let text = scene_text().replace(
         "procedural = \"checkerboard\"\ncells = 4",
         "image = \"nowhere.png\"",
     );
@@ -278,12 +275,13 @@ fn mtl_diffuse_maps_are_loaded() {
     let png = image_io::encode(&image, Format::Png, 1.0).unwrap();
     let mut files = files(OBJ, "newmtl red\nKd 0.6 0.1 0.1\nmap_Kd maps/wood.png\n");
     files.0.insert("maps/wood.png".to_string(), png);
-    let scene = scene_from_table(tables::parse(SCENE, "fuzz.toml").unwrap(), &files).unwrap();
+    let scene =
+        scene_from_table(tables::parse(&scene_text(), "fuzz.toml").unwrap(), &files).unwrap();
     let red = scene.materials.iter().find(|m| m.name == "red").unwrap();
     let texture = &scene.textures[red.diffuse_texture.expect("map_Kd loaded")];
     assert_eq!((texture.texels.width, texture.texels.height), (2, 2));
     let missing = files_without(&files, "maps/wood.png");
-    let error = scene_from_table(tables::parse(SCENE, "fuzz.toml").unwrap(), &missing)
+    let error = scene_from_table(tables::parse(&scene_text(), "fuzz.toml").unwrap(), &missing)
         .err()
         .unwrap();
     let chain = error_line(&error);

@@ -48,15 +48,9 @@ fn an_empty_medium_changes_nothing() {
     }
 }
 
-const OPEN_SUN: &str = r#"
-[camera]
-eye = [0.0, 1.0, 6.0]
-look_at = [0.0, 0.0, 0.0]
-fov_y = 40.0
-width = 40
-height = 30
-
-[materials.grey]
+fn open_sun() -> String {
+    support::camera([0.0, 1.0, 6.0], [0.0, 0.0, 0.0], 40.0, 40, 30)
+        + r#"[materials.grey]
 diffuse = [0.5, 0.5, 0.5]
 
 [medium]
@@ -75,13 +69,14 @@ shape = "quad"
 name = "floor"
 material = "grey"
 transform = [{ scale = 100.0 }]
-"#;
+"#
+}
 
 /// A distant light, nothing in the way: every viewing ray is lit over its whole
 /// length D, and the in-scattered light is σ_s p(α) E (1 − e^(−σ_t D)) / σ_t.
 #[test]
 fn under_an_open_sky_the_closed_form() {
-    let scene = scene_file(OPEN_SUN, &[]);
+    let scene = scene_file(&open_sun(), &[]);
     let medium = scene.medium.clone().unwrap();
     let (view, surface) = visible_surface(&scene);
     let volumes = LightVolumes::new(&scene, &scene.lights[0]).unwrap();
@@ -109,7 +104,7 @@ fn under_an_open_sky_the_closed_form() {
 /// Simpson rule with a million steps, on rays passing close to and far from it.
 #[test]
 fn under_a_point_light_the_quadrature_matches_a_fine_integral() {
-    let text = OPEN_SUN.replace(
+    let text = open_sun().replace(
         "type = \"distant\"\ndirection = [0.3, -1.0, -0.2]\nirradiance = [2.0, 3.0, 4.0]",
         "type = \"point\"\nposition = [0.2, 1.0, 0.5]\nintensity = [1.0, 1.0, 1.0]",
     );
@@ -272,7 +267,7 @@ fn under_the_sun_shadow_volumes_are_ray_casting() {
 /// slab method at each step.
 #[test]
 fn in_a_box_the_sun_is_attenuated_on_its_way_in() {
-    let boxed = OPEN_SUN.replace(
+    let boxed = open_sun().replace(
         "[medium]\n",
         "[medium]\nextent = { min = [-5.0, 0.0, -5.0], max = [5.0, 1.0, 5.0] }\n",
     );
@@ -359,7 +354,7 @@ fn in_a_box_the_sun_is_attenuated_on_its_way_in() {
 fn ray_marching_counts_every_step() {
     use lumiere::media::ray_marching;
     use lumiere::scene::ray_queries::SceneRays;
-    let scene = scene_file(OPEN_SUN, &[]);
+    let scene = scene_file(&open_sun(), &[]);
     let medium = scene.medium.clone().unwrap();
     let lumiere::Light::Distant(sun) = &scene.lights[0] else {
         panic!("a distant light");

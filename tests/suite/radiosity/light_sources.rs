@@ -14,7 +14,9 @@ use lumiere::{Renderer, Scene};
 use std::f64::consts::PI;
 use support::{error_line, polygon, scene_from_text, unit_cube_walls};
 
-const CAMERA: &str = "[camera]\neye = [0.5, 1.6, -0.5]\nlook_at = [0.5, 0.0, 0.5]\nfov_y = 50.0\nwidth = 24\nheight = 24\n\n";
+fn camera() -> String {
+    support::camera([0.5, 1.6, -0.5], [0.5, 0.0, 0.5], 50.0, 24, 24)
+}
 
 fn rectangle(a: DVec3, b: DVec3) -> [DVec3; 4] {
     if a.y == b.y {
@@ -30,7 +32,8 @@ fn rectangle(a: DVec3, b: DVec3) -> [DVec3; 4] {
 /// over [0.1, 0.4]² at height 0.5, meshed into 1/8-unit elements.
 fn floor_scene(light: &str, radiosity: &str) -> Scene {
     let mut text = format!(
-        "{CAMERA}[radiosity]\n{radiosity}\n\n[materials.floor]\ndiffuse = [0.5, 0.25, 0.125]\n\n[[lights]]\n{light}\n\n"
+        "{}[radiosity]\n{radiosity}\n\n[materials.floor]\ndiffuse = [0.5, 0.25, 0.125]\n\n[[lights]]\n{light}\n\n",
+        camera()
     );
     text += &polygon(
         "floor",
@@ -171,7 +174,8 @@ fn spot_distant_and_sphere_lights_give_their_closed_forms() {
 /// its centre.
 fn lit_cube(solver: &str) -> Scene {
     let mut text = format!(
-        "{CAMERA}[radiosity]\nsolver = \"{solver}\"\nresolution = 128\nelement_size = 0.125\npatch_size = 0.25\ntolerance = 1e-9\nunshot = 1e-5\nmax_steps = 100000\n\n[materials.wall]\ndiffuse = [0.5, 0.5, 0.5]\n\n[[lights]]\ntype = \"point\"\nposition = [0.5, 0.5, 0.5]\nintensity = [1.0, 1.0, 1.0]\n\n"
+        "{}[radiosity]\nsolver = \"{solver}\"\nresolution = 128\nelement_size = 0.125\npatch_size = 0.25\ntolerance = 1e-9\nunshot = 1e-5\nmax_steps = 100000\n\n[materials.wall]\ndiffuse = [0.5, 0.5, 0.5]\n\n[[lights]]\ntype = \"point\"\nposition = [0.5, 0.5, 0.5]\nintensity = [1.0, 1.0, 1.0]\n\n",
+        camera()
     );
     text += &unit_cube_walls("wall");
     scene_from_text(&text, &[])
@@ -240,7 +244,7 @@ fn where_nothing_bounces_the_image_is_the_direct_light_with_radiosity_or_without
     // only the light's direct part, which every sample computes itself. Drawn
     // without that part, the image equals the plain direct-light image.
     let text = |radiosity: bool| {
-        let mut t = String::from(CAMERA);
+        let mut t = camera();
         if radiosity {
             t += "[radiosity]\nelement_size = 0.125\n\n";
         }

@@ -69,9 +69,7 @@ fn facing(mut corners: Vec<DVec3>, normal: DVec3) -> Vec<DVec3> {
 
 /// A scene of polygons, each with (reflectance, emitted radiance).
 fn scene_of(polygons: &[(Vec<DVec3>, f64, f64)]) -> Scene {
-    let mut text = String::from(
-        "[camera]\neye = [0.5, 0.5, -3.0]\nlook_at = [0.5, 0.5, 0.5]\nfov_y = 60.0\nwidth = 32\nheight = 32\n",
-    );
+    let mut text = crate::support::camera([0.5, 0.5, -3.0], [0.5, 0.5, 0.5], 60.0, 32, 32);
     for (k, (_, rho, emission)) in polygons.iter().enumerate() {
         text += &format!(
             "[materials.m{k}]\ndiffuse = [{rho}, {rho}, {rho}]\nemission = [{emission}, {emission}, {emission}]\n"

@@ -86,9 +86,9 @@ fn subdivision_belongs_to_gathering() {
 fn polygon_scene(corners: &[DVec3]) -> Scene {
     let vertices: Vec<[f64; 3]> = corners.iter().map(|c| c.to_array()).collect();
     let text = format!(
-        "[camera]\neye = [0.0, 0.0, 9.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 8\nheight = 8\n\
-         [materials.m]\ndiffuse = [0.5, 0.5, 0.5]\nemission = [1.0, 1.0, 1.0]\n\
-         [[objects]]\nshape = \"polygon\"\nname = \"p\"\nmaterial = \"m\"\nvertices = {vertices:?}\n"
+        "{}[materials.m]\ndiffuse = [0.5, 0.5, 0.5]\nemission = [1.0, 1.0, 1.0]\n\
+         [[objects]]\nshape = \"polygon\"\nname = \"p\"\nmaterial = \"m\"\nvertices = {vertices:?}\n",
+        crate::support::camera([0.0, 0.0, 9.0], [0.0, 0.0, 0.0], 40.0, 8, 8)
     );
     let table = tables::parse(&text, "test scene").unwrap();
     scene_from_table(table, &lumiere::catalogue::resources()).unwrap()

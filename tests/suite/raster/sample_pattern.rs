@@ -10,15 +10,7 @@ use lumiere::scene_from_toml;
 /// pixel 4 at `2 edge` of its width.
 fn edge_scene(edge: f64, pattern: &str) -> String {
     format!(
-        r#"
-[camera]
-eye = [0.0, 0.0, 1.0]
-look_at = [0.0, 0.0, 0.0]
-fov_y = 90.0
-width = 8
-height = 4
-
-[render]
+        r#"{}[render]
 supersample = 4
 sample_pattern = "{pattern}"
 
@@ -30,7 +22,8 @@ emission = [1.0, 1.0, 1.0]
 shape = "polygon"
 material = "lamp"
 vertices = [[-3.0, -3.0, 0.0], [{edge}, -3.0, 0.0], [{edge}, 3.0, 0.0], [-3.0, 3.0, 0.0]]
-"#
+"#,
+        crate::support::camera([0.0, 0.0, 1.0], [0.0, 0.0, 0.0], 90.0, 8, 4)
     )
 }
 

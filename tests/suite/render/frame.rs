@@ -394,15 +394,9 @@ fn radiosity_takes_point_lights_and_their_shadows() {
     );
 }
 
-const TEXTURED_RADIOSITY: &str = r#"
-[camera]
-eye = [0.0, 2.0, 4.0]
-look_at = [0.0, 0.0, 0.0]
-fov_y = 45.0
-width = 32
-height = 32
-
-[textures.half]
+fn textured_radiosity() -> String {
+    crate::support::camera([0.0, 2.0, 4.0], [0.0, 0.0, 0.0], 45.0, 32, 32)
+        + r#"[textures.half]
 procedural = "checkerboard"
 colors = [[0.5, 0.25, 0.125], [0.5, 0.25, 0.125]]
 
@@ -429,7 +423,8 @@ transform = [{ rotate = { axis = [1.0, 0.0, 0.0], degrees = 180.0 } }, { transla
 [radiosity]
 solver = "gathering"
 patch_size = 1.0
-"#;
+"#
+}
 
 /// Under radiosity a diffuse texture scales the light a surface reflects: with a
 /// constant texture of colour c, the floor shows c times its untextured radiance.
@@ -437,7 +432,7 @@ patch_size = 1.0
 fn radiosity_takes_textures() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("t.toml");
-    std::fs::write(&path, TEXTURED_RADIOSITY).unwrap();
+    std::fs::write(&path, textured_radiosity()).unwrap();
     let textured = load_scene(path.to_str().unwrap(), &[]).unwrap();
     let mut plain = textured.clone();
     for m in &mut plain.materials {

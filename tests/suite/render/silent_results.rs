@@ -8,7 +8,9 @@ use lumiere::scene::{scene_from_table, tables};
 
 use support::Files;
 
-const CAMERA: &str = "[camera]\neye = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 8\nheight = 8\n";
+fn camera() -> String {
+    support::camera([0.0, 0.0, 3.0], [0.0, 0.0, 0.0], 40.0, 8, 8)
+}
 
 fn warnings(text: &str) -> Vec<String> {
     let table = tables::parse(text, "s.toml").unwrap();
@@ -23,16 +25,16 @@ fn a_scene_that_renders_black_says_why() {
     let light =
         "[[lights]]\ntype = \"point\"\nposition = [0.0, 1.0, 1.0]\nintensity = [1.0, 1.0, 1.0]\n";
     assert!(
-        warnings(&format!("{CAMERA}{light}"))
+        warnings(&format!("{}{light}", camera()))
             .iter()
             .any(|w| w.contains("no objects"))
     );
     assert!(
-        warnings(&format!("{CAMERA}{quad}"))
+        warnings(&format!("{}{quad}", camera()))
             .iter()
             .any(|w| w.contains("no lights"))
     );
-    assert!(warnings(&format!("{CAMERA}{quad}{light}")).is_empty());
+    assert!(warnings(&format!("{}{quad}{light}", camera())).is_empty());
 }
 
 #[cfg(unix)]

@@ -154,8 +154,8 @@ fn the_obj_export_reads_back_with_its_sidecar() {
     let vertices: usize = scene.polygons.iter().map(|p| p.vertices.len()).sum();
     assert_eq!((count("v "), count("f ")), (vertices, scene.polygons.len()));
     // The OBJ through the loader, its MTL's materials, as a scene file names it.
-    let toml = "[camera]\neye = [0.0, 2.2, 7.5]\nlook_at = [0.0, 1.4, 0.0]\nfov_y = 42.0\nwidth = 8\nheight = 6\n\n\
-         [[objects]]\nshape = \"obj\"\nfile = \"scene.obj\"\nsmooth = true\n";
+    let toml = crate::support::camera([0.0, 2.2, 7.5], [0.0, 1.4, 0.0], 42.0, 8, 6)
+        + "[[objects]]\nshape = \"obj\"\nfile = \"scene.obj\"\nsmooth = true\n";
     std::fs::write(dir.path().join("read.toml"), toml).unwrap();
     let read = load_scene(dir.path().join("read.toml").to_str().unwrap(), &[]).unwrap();
     assert_eq!(read.polygons.len(), scene.polygons.len());

@@ -243,10 +243,10 @@ mod closed_shapes {
                 scale.0, scale.1, scale.2, axis.0, axis.1, axis.2, offset.0, offset.1, offset.2
             );
             let text = format!(
-                "[camera]\neye = [0.0, 0.0, 9.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 8\nheight = 8\n\
-                 [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+                "{}[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
                  [[objects]]\nshape = \"sphere\"\nname = \"sphere\"\nmaterial = \"grey\"\nresolution = {resolution}\ntransform = {transform}\n\
-                 [[objects]]\nshape = \"cylinder\"\nname = \"cylinder\"\nmaterial = \"grey\"\nresolution = {resolution}\ntransform = {transform}\n"
+                 [[objects]]\nshape = \"cylinder\"\nname = \"cylinder\"\nmaterial = \"grey\"\nresolution = {resolution}\ntransform = {transform}\n",
+                crate::support::camera([0.0, 0.0, 9.0], [0.0, 0.0, 0.0], 40.0, 8, 8)
             );
             let table = tables::parse(&text, "test scene").unwrap();
             let scene = scene_from_table(table, &lumiere::catalogue::resources())
@@ -273,10 +273,10 @@ mod edge_cases {
     /// A ground quad seen from above, a point light at `light`, and `extra` objects.
     fn scene_with(light: &str, extra: &str) -> String {
         format!(
-            "[camera]\neye = [0.0, 9.0, 6.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 96\nheight = 72\n\
-             [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+            "{}[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
              [[lights]]\ntype = \"point\"\nposition = {light}\nintensity = [10.0, 10.0, 10.0]\n\
-             [[objects]]\nshape = \"quad\"\nname = \"ground\"\nmaterial = \"grey\"\ntransform = [{{ scale = 8.0 }}]\n{extra}"
+             [[objects]]\nshape = \"quad\"\nname = \"ground\"\nmaterial = \"grey\"\ntransform = [{{ scale = 8.0 }}]\n{extra}",
+            crate::support::camera([0.0, 9.0, 6.0], [0.0, 0.0, 0.0], 40.0, 96, 72)
         )
     }
 
@@ -442,12 +442,12 @@ mod shadow_polygon_areas {
     fn a_square_shadows_the_similar_triangle_square() {
         let (s, h, light_height) = (2.0, 1.0, 4.0);
         let text = format!(
-            "[camera]\neye = [0.0, 12.0, 0.001]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 32\nheight = 32\n\
-             [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+            "{}[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
              [[lights]]\ntype = \"point\"\nposition = [0.0, {light_height}, 0.0]\nintensity = [10.0, 10.0, 10.0]\n\
              [[objects]]\nshape = \"quad\"\nname = \"ground\"\nmaterial = \"grey\"\ntransform = [{{ scale = 7.0 }}]\n\
              [[objects]]\nshape = \"quad\"\nname = \"occluder\"\nmaterial = \"grey\"\n\
-             transform = [{{ scale = {s} }}, {{ translate = [0.0, {h}, 0.0] }}]\n"
+             transform = [{{ scale = {s} }}, {{ translate = [0.0, {h}, 0.0] }}]\n",
+            crate::support::camera([0.0, 12.0, 0.001], [0.0, 0.0, 0.0], 40.0, 32, 32)
         );
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("square.toml");

@@ -275,13 +275,7 @@ fn specular_pixel_radiance_is_the_normalised_phong_lobe() {
     let light = DVec3::new(0.3, 2.0, -2.0);
     let scene = support::scene_from_text(
         &format!(
-            r#"
-            [camera]
-            eye = [0.0, 1.5, 2.5]
-            look_at = [0.0, 0.0, -0.5]
-            fov_y = 50.0
-            width = 64
-            height = 64
+            r#"{}
             [render]
             shading = "phong"
             [shadows]
@@ -299,7 +293,10 @@ fn specular_pixel_radiance_is_the_normalised_phong_lobe() {
             material = "gloss"
             transform = [{{ scale = [8.0, 1.0, 8.0] }}]
             "#,
-            light.x, light.y, light.z
+            support::camera([0.0, 1.5, 2.5], [0.0, 0.0, -0.5], 50.0, 64, 64),
+            light.x,
+            light.y,
+            light.z
         ),
         &[],
     );
@@ -395,12 +392,12 @@ fn area_lit_pixels_match_quadrature() {
 fn ray_cast_shadow_of_a_square_is_the_similar_triangle_square() {
     let (s, h, light_height) = (2.0, 1.0, 4.0);
     let text = format!(
-        "[camera]\neye = [0.0, 12.0, 0.001]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 160\nheight = 160\n\
-         [shadows]\nmethod = \"ray-cast\"\n[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+        "{}[shadows]\nmethod = \"ray-cast\"\n[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
          [[lights]]\ntype = \"point\"\nposition = [0.0, {light_height}, 0.0]\nintensity = [10.0, 10.0, 10.0]\n\
          [[objects]]\nshape = \"quad\"\nname = \"ground\"\nmaterial = \"grey\"\ntransform = [{{ scale = 8.0 }}]\n\
          [[objects]]\nshape = \"quad\"\nname = \"occluder\"\nmaterial = \"grey\"\n\
-         transform = [{{ scale = {s} }}, {{ translate = [0.0, {h}, 0.0] }}]\n"
+         transform = [{{ scale = {s} }}, {{ translate = [0.0, {h}, 0.0] }}]\n",
+        support::camera([0.0, 12.0, 0.001], [0.0, 0.0, 0.0], 40.0, 160, 160)
     );
     let dir = std::env::temp_dir().join(format!("lumiere-square-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -414,15 +414,20 @@ fn footprints_where_they_are_known_exactly() {
 /// x ∈ [1, 2] casting a straight-edged shadow over x ∈ [2, 4], seen straight down
 /// from (3, 10, 0) at 128 × 96, with `shadows` settings.
 fn strip_scene(shadows: &[&str]) -> Scene {
-    let text = "[camera]\neye = [3.0, 10.0, 0.0]\nlook_at = [3.0, 0.0, 0.0]\nup = [0.0, 0.0, -1.0]\n\
-                fov_y = 25.0\nwidth = 128\nheight = 96\n\
-                [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+    let text = support::camera_with(
+        [3.0, 10.0, 0.0],
+        [3.0, 0.0, 0.0],
+        25.0,
+        128,
+        96,
+        "up = [0.0, 0.0, -1.0]",
+    ) + "[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
                 [[lights]]\ntype = \"point\"\nposition = [0.0, 6.0, 0.0]\nintensity = [10.0, 10.0, 10.0]\n\
                 [[objects]]\nshape = \"quad\"\nname = \"ground\"\nmaterial = \"grey\"\ntransform = [{ scale = 12.0 }]\n\
                 [[objects]]\nshape = \"quad\"\nname = \"strip\"\nmaterial = \"grey\"\n\
                 transform = [{ scale = [1.0, 1.0, 12.0] }, { translate = [1.5, 3.0, 0.0] }]\n";
     let sets: Vec<String> = shadows.iter().map(|s| format!("shadows.{s}")).collect();
-    support::scene_from_text(text, &sets)
+    support::scene_from_text(&text, &sets)
 }
 
 /// The light's visibility on the ground along x, averaged over the image's rows, at

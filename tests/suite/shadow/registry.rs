@@ -33,12 +33,12 @@ fn light(kind: LightKind) -> &'static str {
 /// A floor, a box over it and one light of `kind`, shadowed by `name`.
 fn scene_text(kind: LightKind, name: &str) -> String {
     format!(
-        "[camera]\neye = [0.0, 1.5, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 50.0\nwidth = 24\nheight = 18\n\n\
-         [shadows]\nmethod = \"{name}\"\n\n\
+        "{}[shadows]\nmethod = \"{name}\"\n\n\
          [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\n\
          [[lights]]\n{}\n\n\
          [[objects]]\nshape = \"quad\"\nmaterial = \"grey\"\ntransform = [{{ scale = 4.0 }}]\n\n\
          [[objects]]\nshape = \"box\"\nmaterial = \"grey\"\ntransform = [{{ scale = 0.4 }}, {{ translate = [0.0, 0.5, 0.0] }}]\n",
+        crate::support::camera([0.0, 1.5, 3.0], [0.0, 0.0, 0.0], 50.0, 24, 18),
         light(kind)
     )
 }

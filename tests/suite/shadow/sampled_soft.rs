@@ -191,15 +191,9 @@ fn one_point_at_the_centre_is_shadow_volumes() {
 }
 
 /// A sphere light over a floor, a square plate between them.
-const SPHERE_SCENE: &str = r#"
-[camera]
-eye = [0.0, 3.0, 5.0]
-look_at = [0.0, 0.0, 0.0]
-fov_y = 35.0
-width = 96
-height = 72
-
-[shadows]
+fn sphere_scene_text() -> String {
+    support::camera([0.0, 3.0, 5.0], [0.0, 0.0, 0.0], 35.0, 96, 72)
+        + r#"[shadows]
 method = "jittered-soft-shadows"
 
 [materials.grey]
@@ -222,10 +216,11 @@ shape = "quad"
 name = "plate"
 material = "grey"
 transform = [{ scale = 0.8 }, { translate = [0.0, 1.2, 0.0] }]
-"#;
+"#
+}
 
 fn sphere_scene(sets: &[String]) -> Scene {
-    support::scene_from_text(SPHERE_SCENE, sets)
+    support::scene_from_text(&sphere_scene_text(), sets)
 }
 
 /// The exact visible share of the sphere's outline disc from `x`: the disc less the
@@ -544,12 +539,12 @@ fn a_near_sphere_and_one_across_the_horizon_give_their_irradiance_share() {
 /// written out here.
 #[test]
 fn each_point_counts_by_its_own_contribution() {
-    let text = "[camera]\neye = [0.0, 4.0, 3.0]\nlook_at = [0.3, 0.0, 0.0]\nfov_y = 50.0\nwidth = 64\nheight = 64\n\
-        [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\
+    let text = support::camera([0.0, 4.0, 3.0], [0.3, 0.0, 0.0], 50.0, 64, 64)
+        + "[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\
         [[objects]]\nshape = \"polygon\"\nname = \"floor\"\nmaterial = \"grey\"\nvertices = [[-3.0, 0.0, -3.0], [-3.0, 0.0, 3.0], [3.0, 0.0, 3.0], [3.0, 0.0, -3.0]]\n\
         [[objects]]\nshape = \"polygon\"\nname = \"plate\"\nmaterial = \"grey\"\nvertices = [[0.2, 1.0, -3.0], [0.8, 1.0, -3.0], [0.8, 1.0, 3.0], [0.2, 1.0, 3.0]]\n\
         [[objects]]\nshape = \"polygon\"\nname = \"lamp\"\nmaterial = \"lamp\"\nvertices = [[-1.0, 2.0, -0.5], [1.0, 2.0, -0.5], [1.0, 2.0, 0.5], [-1.0, 2.0, 0.5]]\n";
-    let scene = support::scene_from_text(text, &[]);
+    let scene = support::scene_from_text(&text, &[]);
     let (view, surface) = visible_surface(&scene);
     let points = [DVec3::new(-0.5, 2.0, 0.0), DVec3::new(0.5, 2.0, 0.0)];
     let soft = SoftShadowVolumes::at_points(&scene, &scene.lights[0], &points);

@@ -16,10 +16,12 @@ use support::scene_from_text;
 /// A scene of the given polygons, each its own object, and one point light.
 fn scene_of(polygons: &[Vec<DVec3>], light: DVec3) -> Scene {
     let mut text = format!(
-        "[camera]\neye = [0.0, 20.0, 0.5]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\nwidth = 16\nheight = 16\n\
-         [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
+        "{}[materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n\
          [[lights]]\ntype = \"point\"\nposition = [{}, {}, {}]\nintensity = [1.0, 1.0, 1.0]\n",
-        light.x, light.y, light.z
+        support::camera([0.0, 20.0, 0.5], [0.0, 0.0, 0.0], 40.0, 16, 16),
+        light.x,
+        light.y,
+        light.z
     );
     for (i, p) in polygons.iter().enumerate() {
         let vertices: Vec<String> = p

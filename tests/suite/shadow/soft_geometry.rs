@@ -810,15 +810,9 @@ fn phantom_cells_outside_the_disc() {
 // ---------------------------------------------------------------------------------
 // 7. The visible part of a polygon light behind one plate.
 
-const SCENE: &str = r#"
-[camera]
-eye = [0.0, 3.0, 6.0]
-look_at = [0.0, 0.0, 0.0]
-fov_y = 40.0
-width = 16
-height = 12
-
-[materials.grey]
+fn scene_text() -> String {
+    crate::support::camera([0.0, 3.0, 6.0], [0.0, 0.0, 0.0], 40.0, 16, 12)
+        + r#"[materials.grey]
 diffuse = [0.5, 0.5, 0.5]
 
 [[objects]]
@@ -826,7 +820,8 @@ shape = "quad"
 name = "floor"
 material = "grey"
 transform = [{ scale = 20.0 }]
-"#;
+"#
+}
 
 fn toml_points(points: &[DVec3]) -> String {
     let items: Vec<String> = points
@@ -864,8 +859,9 @@ proptest! {
         // Strictly between the floor and the light (|q − centroid| < 2, tilts < 0.2).
         prop_assert!(plate_3d.iter().all(|p| p.y > 0.0 && p.y < 2.0));
         let text = format!(
-            "{SCENE}\n[[lights]]\ntype = \"polygon\"\nvertices = {}\nradiance = [1.0, 1.0, 1.0]\n\n\
+            "{}\n[[lights]]\ntype = \"polygon\"\nvertices = {}\nradiance = [1.0, 1.0, 1.0]\n\n\
              [[objects]]\nshape = \"polygon\"\nname = \"plate\"\nmaterial = \"grey\"\nvertices = {}\n",
+            scene_text(),
             toml_points(&light),
             toml_points(&plate_3d),
         );

@@ -10,15 +10,9 @@ use lumiere::geometry::lambert_contour::projected_solid_angle;
 use lumiere::render::visible_surface;
 use lumiere::settings::ShadowMethod;
 
-const SCENE: &str = r#"
-[camera]
-eye = [0.3, 1.2, 5.0]
-look_at = [0.0, 0.0, 0.0]
-fov_y = 30.0
-width = 64
-height = 64
-
-[materials.grey]
+fn scene_text() -> String {
+    crate::support::camera([0.3, 1.2, 5.0], [0.0, 0.0, 0.0], 30.0, 64, 64)
+        + r#"[materials.grey]
 diffuse = [0.5, 0.5, 0.5]
 
 [[lights]]
@@ -37,7 +31,8 @@ shape = "quad"
 name = "occluder"
 material = "grey"
 transform = [{ scale = 0.6 }, { translate = [0.0, 1.0, 0.0] }]
-"#;
+"#
+}
 
 const LIGHT_HALF: f64 = 0.5;
 const OCCLUDER_HALF: f64 = 0.3;
@@ -85,7 +80,7 @@ fn exact_share(p: DVec3) -> f64 {
 fn soft_scene(samples: u32) -> (lumiere::Scene, usize) {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("soft.toml");
-    std::fs::write(&path, SCENE).unwrap();
+    std::fs::write(&path, scene_text()).unwrap();
     let sets = [format!("shadows.light_samples={samples}")];
     let scene = lumiere::load_scene(path.to_str().unwrap(), &sets).unwrap();
     let floor = scene
@@ -196,8 +191,8 @@ fn the_visible_part_of_an_emitter_shades_exactly() {
 fn a_point_the_light_cannot_shine_on_gets_nothing() {
     use lumiere::image_io::BufferData;
     use lumiere::render::Renderer;
-    let text = "[camera]\neye = [0.0, 1.0, 4.0]\nlook_at = [0.0, 2.5, 0.0]\nfov_y = 60.0\nwidth = 24\nheight = 24\n\
-        [shadows]\nmethod = \"soft-shadow-volumes\"\nlight_points = 4\n\
+    let text = crate::support::camera([0.0, 1.0, 4.0], [0.0, 2.5, 0.0], 60.0, 24, 24)
+        + "[shadows]\nmethod = \"soft-shadow-volumes\"\nlight_points = 4\n\
         [materials.grey]\ndiffuse = [0.5, 0.5, 0.5]\n[materials.lamp]\nemission = [5.0, 5.0, 5.0]\n\
         [[objects]]\nshape = \"polygon\"\nname = \"floor\"\nmaterial = \"grey\"\nvertices = [[-3.0, 0.0, -3.0], [-3.0, 0.0, 3.0], [3.0, 0.0, 3.0], [3.0, 0.0, -3.0]]\n\
         [[objects]]\nshape = \"polygon\"\nname = \"ceiling\"\nmaterial = \"grey\"\nvertices = [[-3.0, 3.0, -3.0], [3.0, 3.0, -3.0], [3.0, 3.0, 3.0], [-3.0, 3.0, 3.0]]\n\

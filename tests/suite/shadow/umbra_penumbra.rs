@@ -165,15 +165,9 @@ fn under_the_teapot_face_by_face() {
     );
 }
 
-const PLATE_SCENE: &str = r#"
-[camera]
-eye = [0.0, 3.0, 6.0]
-look_at = [0.0, 0.0, 0.0]
-fov_y = 40.0
-width = 64
-height = 48
-
-[materials.grey]
+fn plate_scene_text() -> String {
+    support::camera([0.0, 3.0, 6.0], [0.0, 0.0, 0.0], 40.0, 64, 48)
+        + r#"[materials.grey]
 diffuse = [0.5, 0.5, 0.5]
 
 [[lights]]
@@ -186,11 +180,12 @@ shape = "quad"
 name = "floor"
 material = "grey"
 transform = [{ scale = 20.0 }]
-"#;
+"#
+}
 
 /// The plate scene with `extra` objects, loaded from a file.
 fn plate_scene(extra: &str) -> Scene {
-    support::scene_from_text(&format!("{PLATE_SCENE}{extra}"), &[])
+    support::scene_from_text(&format!("{}{extra}", plate_scene_text()), &[])
 }
 
 /// A thin plate at height 1 over x < 0: seen from the origin it hides the light's
@@ -308,15 +303,9 @@ fn with_a_point_light_it_is_ray_casting() {
 /// A wall in the plane x = 0.5 cuts the light (x from −1 to 1 at height 2) into a
 /// large part on its −x side, with the light's centre, and a narrow one on its +x
 /// side, which the eye sees; a plate over the narrow part shades the wall there.
-const CUT_LIGHT_SCENE: &str = r#"
-[camera]
-eye = [4.0, 1.0, 0.0]
-look_at = [0.5, 1.0, 0.0]
-fov_y = 50.0
-width = 64
-height = 48
-
-[materials.grey]
+fn cut_light_scene_text() -> String {
+    support::camera([4.0, 1.0, 0.0], [0.5, 1.0, 0.0], 50.0, 64, 48)
+        + r#"[materials.grey]
 diffuse = [0.5, 0.5, 0.5]
 
 [[lights]]
@@ -335,7 +324,8 @@ shape = "polygon"
 name = "plate"
 material = "grey"
 vertices = [[0.6, 1.5, -0.3], [1.2, 1.5, -0.3], [1.2, 1.5, 0.3], [0.6, 1.5, 0.3]]
-"#;
+"#
+}
 
 /// The projected solid angle of the light's part that `p` on the wall sees past the
 /// plate, through the wall's +x hemisphere: a midpoint rule over the light (cells of
@@ -375,7 +365,7 @@ fn visible_through_plus_x(p: DVec3) -> (f64, f64) {
 /// nothing, so the penumbra came out fully lit).
 #[test]
 fn a_receiver_cutting_the_light_is_shaded_from_the_side_the_eye_sees() {
-    let scene = support::scene_from_text(CUT_LIGHT_SCENE, &[]);
+    let scene = support::scene_from_text(&cut_light_scene_text(), &[]);
     let (view, surface, visibility, _) = band_of(&scene, ShadowMethod::UmbraPenumbra);
     let shading = lumiere::shading::FrameShading::new(&scene, &view, vec![true]);
     let shaded = shading.shade_band(

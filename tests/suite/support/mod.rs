@@ -59,6 +59,25 @@ pub fn camera(eye: [f64; 3], look_at: [f64; 3], fov_y: f64, width: u32, height: 
     )
 }
 
+/// The `[camera]` table of `camera` with `extra` lines (each `key = value`) before its blank line.
+pub fn camera_with(
+    eye: [f64; 3],
+    look_at: [f64; 3],
+    fov_y: f64,
+    width: u32,
+    height: u32,
+    extra: &str,
+) -> String {
+    let mut table = camera(eye, look_at, fov_y, width, height);
+    table.pop();
+    for line in extra.lines() {
+        table += line;
+        table.push('\n');
+    }
+    table.push('\n');
+    table
+}
+
 /// The scene rendered, or a panic with the library's one-line message.
 pub fn render(scene: &lumiere::Scene) -> lumiere::Image {
     lumiere::render(scene).unwrap_or_else(|e| panic!("{}", e.line()))

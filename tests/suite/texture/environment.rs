@@ -672,13 +672,7 @@ proptest! {
 /// no diffuse) in a fine `directions` cube map.
 fn mirror_ball(resolution: u32) -> String {
     format!(
-        r#"
-        [camera]
-        eye = [0.0, 0.0, 3.2]
-        look_at = [0.0, 0.0, 0.0]
-        fov_y = 40.0
-        width = 160
-        height = 160
+        r#"{}
         [environments.env]
         procedural = "directions"
         layout = "cube"
@@ -693,7 +687,8 @@ fn mirror_ball(resolution: u32) -> String {
         resolution = {resolution}
         [render]
         backdrop = "env"
-        "#
+        "#,
+        support::camera([0.0, 0.0, 3.2], [0.0, 0.0, 0.0], 40.0, 160, 160)
     )
 }
 
@@ -763,13 +758,7 @@ fn index_matched(filter: &str, quad: bool) -> String {
         ""
     };
     format!(
-        r#"
-        [camera]
-        eye = [0.0, 0.0, 3.0]
-        look_at = [0.0, 0.0, 0.0]
-        fov_y = 40.0
-        width = 96
-        height = 72
+        r#"{}
         [environments.env]
         procedural = "directions"
         resolution = 128
@@ -777,7 +766,8 @@ fn index_matched(filter: &str, quad: bool) -> String {
         [render]
         backdrop = "env"
         {quad}
-        "#
+        "#,
+        support::camera([0.0, 0.0, 3.0], [0.0, 0.0, 0.0], 40.0, 96, 72)
     )
 }
 
@@ -827,13 +817,7 @@ fn an_index_matched_refractor_shows_the_backdrop_straight_through() {
 fn glass_quad(back: bool) -> String {
     let degrees = if back { -90.0 } else { 90.0 };
     format!(
-        r#"
-        [camera]
-        eye = [0.0, 0.0, 3.0]
-        look_at = [0.0, 0.0, 0.0]
-        fov_y = 40.0
-        width = 96
-        height = 72
+        r#"{}
         [environments.env]
         procedural = "directions"
         resolution = 256
@@ -846,7 +830,8 @@ fn glass_quad(back: bool) -> String {
         shape = "quad"
         material = "glass"
         transform = [{{ rotate = {{ axis = [1.0, 0.0, 0.0], degrees = {degrees} }} }}, {{ rotate = {{ axis = [0.0, 1.0, 0.0], degrees = 35.0 }} }}, {{ scale = 3.0 }}]
-        "#
+        "#,
+        support::camera([0.0, 0.0, 3.0], [0.0, 0.0, 0.0], 40.0, 96, 72)
     )
 }
 
@@ -932,9 +917,9 @@ fn png(width: u32, height: u32) -> Vec<u8> {
 /// `material`, and `render` lines.
 fn environment_scene(environment: &str, material: &str, render: &str) -> String {
     format!(
-        "[camera]\neye = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 40.0\n\
-         width = 16\nheight = 12\n\n[render]\n{render}\n\n[environments.env]\n{environment}\n\n\
-         [materials.shiny]\n{material}\n\n[[objects]]\nshape = \"sphere\"\nmaterial = \"shiny\"\n"
+        "{}[render]\n{render}\n\n[environments.env]\n{environment}\n\n\
+         [materials.shiny]\n{material}\n\n[[objects]]\nshape = \"sphere\"\nmaterial = \"shiny\"\n",
+        support::camera([0.0, 0.0, 3.0], [0.0, 0.0, 0.0], 40.0, 16, 12)
     )
 }
 

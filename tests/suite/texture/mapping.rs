@@ -98,14 +98,7 @@ fn scene_from(text: &str) -> Scene {
 /// vertices, seen by `eye`, interpolated as `interpolation` says.
 fn textured_quad(eye: [f64; 3], look_at: [f64; 3], up: [f64; 3], interpolation: &str) -> Scene {
     scene_from(&format!(
-        r#"
-        [camera]
-        eye = {eye:?}
-        look_at = {look_at:?}
-        up = {up:?}
-        fov_y = 50.0
-        width = 160
-        height = 120
+        r#"{}
         [textures.t]
         procedural = "checkerboard"
         [materials.m]
@@ -117,7 +110,8 @@ fn textured_quad(eye: [f64; 3], look_at: [f64; 3], up: [f64; 3], interpolation: 
         shape = "quad"
         material = "m"
         transform = [{{ scale = [3.0, 1.0, 12.0] }}, {{ rotate = {{ axis = [0.0, 1.0, 0.0], degrees = 20.0 }} }}, {{ translate = [0.0, 0.0, -4.0] }}]
-        "#
+        "#,
+        crate::support::camera_with(eye, look_at, 50.0, 160, 120, &format!("up = {up:?}"))
     ))
 }
 
@@ -230,13 +224,7 @@ fn exact_mode_evaluates_the_mapping_at_each_point() {
     // the tessellation's order, and exact differs from interpolated.
     let text = |mode: &str| {
         format!(
-            r#"
-            [camera]
-            eye = [0.0, 0.5, 4.0]
-            look_at = [0.0, 0.0, 0.0]
-            fov_y = 40.0
-            width = 96
-            height = 96
+            r#"{}
             [textures.t]
             procedural = "grid"
             [materials.m]
@@ -252,7 +240,8 @@ fn exact_mode_evaluates_the_mapping_at_each_point() {
             shape = "sphere"
             resolution = 24
             material = "m"
-            "#
+            "#,
+            crate::support::camera([0.0, 0.5, 4.0], [0.0, 0.0, 0.0], 40.0, 96, 96)
         )
     };
     let exact = render(&scene_from(&text("exact"))).unwrap();
@@ -419,13 +408,7 @@ fn filtered_plane(texels: &Texels, filter: Filter, view: PlaneView) -> (Scene, I
         PlaneView::Steep => ([0.0, 4.0, 0.0], [0.0, 0.0, -3.0]),
     };
     let mut scene = scene_from(&format!(
-        r#"
-        [camera]
-        eye = {eye:?}
-        look_at = {look_at:?}
-        fov_y = 50.0
-        width = 128
-        height = 96
+        r#"{}
         [shadows]
         method = "none"
         [textures.t]
@@ -442,7 +425,8 @@ fn filtered_plane(texels: &Texels, filter: Filter, view: PlaneView) -> (Scene, I
         shape = "quad"
         material = "m"
         transform = [{{ scale = [10.0, 1.0, 10.0] }}, {{ rotate = {{ axis = [0.0, 1.0, 0.0], degrees = 30.0 }} }}, {{ translate = [0.0, 0.0, -5.5] }}]
-        "#
+        "#,
+        crate::support::camera(eye, look_at, 50.0, 128, 96)
     ));
     scene.textures[0] = Arc::new(Texture::new(
         "octave noise",
@@ -768,13 +752,7 @@ fn bumps_move_with_their_object() {
 fn the_box_mapping_reproduces_the_boxs_own_coordinates() {
     let scene = |mapping: &str| {
         scene_from(&format!(
-            r#"
-            [camera]
-            eye = [2.0, 3.0, 4.0]
-            look_at = [0.0, 0.0, 0.0]
-            fov_y = 40.0
-            width = 8
-            height = 8
+            r#"{}
             [textures.t]
             procedural = "grid"
             [materials.m]
@@ -785,7 +763,8 @@ fn the_box_mapping_reproduces_the_boxs_own_coordinates() {
             shape = "box"
             material = "m"
             transform = [{{ rotate = {{ axis = [1.0, 2.0, 3.0], degrees = 40.0 }} }}]
-            "#
+            "#,
+            crate::support::camera([2.0, 3.0, 4.0], [0.0, 0.0, 0.0], 40.0, 8, 8)
         ))
     };
     let own = scene("");
@@ -897,12 +876,12 @@ fn the_suns_glow_is_a_cos64_lobe() {
 fn the_bump_height_scales_the_displacement() {
     let h = 0.05;
     let text = format!(
-        "[camera]\neye = [0.0, 3.0, 0.001]\nlook_at = [0.0, 0.0, 0.0]\nfov_y = 30.0\nwidth = 48\nheight = 48\n\
-         [render]\nshading = \"phong\"\n\
+        "{}[render]\nshading = \"phong\"\n\
          [textures.bumps]\nprocedural = \"noise\"\ncells = 4\nseed = 5\n\
          [materials.floor]\ndiffuse = [0.5, 0.5, 0.5]\nbump_texture = \"bumps\"\nbump_height = {h}\n\
          [[lights]]\ntype = \"distant\"\ndirection = [0.0, -1.0, 0.0]\nirradiance = [1.0, 1.0, 1.0]\n\
-         [[objects]]\nshape = \"quad\"\nname = \"floor\"\nmaterial = \"floor\"\ntransform = [{{ scale = 2.0 }}]\n"
+         [[objects]]\nshape = \"quad\"\nname = \"floor\"\nmaterial = \"floor\"\ntransform = [{{ scale = 2.0 }}]\n",
+        crate::support::camera([0.0, 3.0, 0.001], [0.0, 0.0, 0.0], 30.0, 48, 48)
     );
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("bumps.toml");

@@ -20,15 +20,7 @@ use support::scene_from_text;
 /// whose intensity grows with the room so the walls keep their brightness.
 fn room(half: f64, capture_resolution: u32) -> Scene {
     let mut text = format!(
-        r#"
-[camera]
-eye = [0.0, 0.4, 2.6]
-look_at = [0.0, 0.0, 0.0]
-fov_y = 40.0
-width = 96
-height = 96
-
-[environments.room]
+        r#"{}[environments.room]
 capture = [0.0, 0.0, 0.0]
 hide = ["ball"]
 resolution = {capture_resolution}
@@ -49,6 +41,7 @@ name = "ball"
 resolution = 256
 material = "mirror"
 "#,
+        support::camera([0.0, 0.4, 2.6], [0.0, 0.0, 0.0], 40.0, 96, 96),
         lx = 0.3 * half,
         ly = 0.7 * half,
         lz = 0.2 * half,
