@@ -827,7 +827,10 @@ fn bad_global_illumination_input_is_refused_in_one_line() {
         (
             "ray-tracing",
             &["global.frustum_resolution=8"],
-            &["global.frustum_resolution is read by two-pass", "ray-tracing"],
+            &[
+                "global.frustum_resolution is read by two-pass",
+                "ray-tracing",
+            ],
         ),
         (
             "ray-tracing",
