@@ -39,7 +39,7 @@ use super::traced_scene::{Leaving, SurfaceHit, TracedScene};
 use crate::geometry::bvh::Aabb;
 use crate::geometry::sampling::Stream;
 use crate::radiosity::Solution;
-use crate::scene::{Light, Reflectance, Scene};
+use crate::scene::{Light, Reach, Reflectance, Scene};
 use crate::settings::FinalGatherSettings;
 use crate::shading::light_model::{SurfacePoint, reflected};
 use glam::{DVec2, DVec3, Vec3};
@@ -355,10 +355,20 @@ impl FinalGather {
         radiance
     }
 
-    /// The direct light a hit reflects back along the ray, from every light,
-    /// each shadowed by one shadow ray to a uniform point of it (the
-    /// gather's many rays average the shadow rays' noise).
-    fn direct_at(
+    /// The direct light a hit reflects back along the ray, from every light, each
+    /// by one shadow ray (the gather's many rays average their noise). A point,
+    /// spot or distant light is reached by its one ray exactly: its unshadowed
+    /// light if the ray is clear. An extended light is sampled at one point, the
+    /// sample weighted as irradiance, L × w cos θ with w its weight per unit
+    /// radiance (`Light::sample`): the light is its exact unshadowed light
+    /// (Lambert's formula) less ρ/π times that weighted sample when the ray is
+    /// blocked, whose mean is ρ/π times the visible part's irradiance, exact where
+    /// nothing is in the way (our choice: the blocked part as the estimate's
+    /// control variate, rather than ρ/π L w cos θ alone when clear, whose weights
+    /// grow without bound near the light's edges). One ray's visibility times the
+    /// unshadowed light would converge to the visible share of the light's area
+    /// instead, wrong in a penumbra.
+    pub fn direct_at(
         &self,
         scene: &Scene,
         hit: &SurfaceHit,
@@ -385,20 +395,29 @@ impl FinalGather {
         };
         let mut total = Vec3::ZERO;
         for light in &self.lights {
-            let unshadowed = reflected(&point, &reflectance, light);
-            if unshadowed == Vec3::ZERO {
-                continue;
-            }
             let u = DVec2::new(stream.next_f64(), stream.next_f64());
             let Some(sample) = light.sample(hit.position, u) else {
                 continue;
             };
+            let unshadowed = reflected(&point, &reflectance, light);
             let emitter = light.emitter_polygon().map(|p| p as u32);
-            if !self
+            let clear = !self
                 .traced
-                .blocked(hit.position, sample.point, hit.leaving(), emitter)
-            {
+                .blocked(hit.position, sample.point, hit.leaving(), emitter);
+            if clear {
                 total += unshadowed;
+                continue;
+            }
+            match light.reach() {
+                // A point's or a direction's one ray is exact: blocked, no light.
+                Reach::Point { .. } | Reach::Direction { .. } => {}
+                // The blocked sample's irradiance, taken from the exact light.
+                Reach::Extended { radiance } => {
+                    let cos = normal.dot((sample.point - hit.position).normalize());
+                    let blocked = (sample.weight * cos.max(0.0)) as f32;
+                    total += unshadowed
+                        - reflectance.diffuse / std::f32::consts::PI * radiance * blocked;
+                }
             }
         }
         total

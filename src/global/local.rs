@@ -98,7 +98,7 @@ pub fn lights_at(
                     1.0
                 }
             }
-            Reach::Extended => {
+            Reach::Extended { .. } => {
                 let mut stream = Stream::new(l as u64, stream_index);
                 extended_clear(scene, traced, light, position, normal, leaving, &mut stream)
             }

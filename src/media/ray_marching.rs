@@ -53,14 +53,14 @@ pub fn inscattered(
                 }
                 point_integrand(medium, light, at, eye, direction, t)
             }
-            Reach::Extended => return Vec3::ZERO,
+            Reach::Extended { .. } => return Vec3::ZERO,
         };
         total += term * h;
     }
     let colour = match source {
         Reach::Direction { irradiance, .. } => irradiance,
         Reach::Point { intensity, .. } => intensity,
-        Reach::Extended => Vec3::ZERO,
+        Reach::Extended { .. } => Vec3::ZERO,
     };
     colour * (sigma_s * total) as f32
 }

@@ -246,7 +246,7 @@ fn inscattered(
             total *= sigma_s;
             intensity
         }
-        Reach::Extended => return Vec3::ZERO,
+        Reach::Extended { .. } => return Vec3::ZERO,
     };
     colour * total as f32
 }

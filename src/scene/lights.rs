@@ -240,9 +240,9 @@ pub enum Reach {
     /// From a direction (distant lights): the unit direction light travels, and the
     /// irradiance of a surface facing it.
     Direction { direction: DVec3, irradiance: Vec3 },
-    /// From an extended emitter (polygon and sphere lights): sampled
-    /// (`Light::sample`).
-    Extended,
+    /// From an extended emitter (polygon and sphere lights), of this radiance:
+    /// sampled (`Light::sample`, whose weights are per unit radiance).
+    Extended { radiance: Vec3 },
 }
 
 /// One point on (or, for a distant light, towards) a light, seen from a receiver.
@@ -337,7 +337,7 @@ impl Light {
     pub fn position(&self) -> Option<DVec3> {
         match self.reach() {
             Reach::Point { at, .. } => Some(at),
-            Reach::Direction { .. } | Reach::Extended => None,
+            Reach::Direction { .. } | Reach::Extended { .. } => None,
         }
     }
 
@@ -356,7 +356,12 @@ impl Light {
                 direction: l.direction,
                 irradiance: l.irradiance,
             },
-            Light::Polygon(_) | Light::Sphere(_) => Reach::Extended,
+            Light::Polygon(l) => Reach::Extended {
+                radiance: l.radiance,
+            },
+            Light::Sphere(l) => Reach::Extended {
+                radiance: l.radiance,
+            },
         }
     }
 

@@ -37,7 +37,7 @@ impl LightVolumes {
         let source = match light.reach() {
             Reach::Point { at, .. } => Source::Point(at),
             Reach::Direction { direction, .. } => Source::Distant(direction),
-            Reach::Extended => return None,
+            Reach::Extended { .. } => return None,
         };
         Some(LightVolumes {
             source,

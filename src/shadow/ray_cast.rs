@@ -125,7 +125,7 @@ impl FrameShadows for RayCastFrame<'_> {
                     })
                     .collect()
             }
-            Reach::Extended => (0..band.samples.len())
+            Reach::Extended { .. } => (0..band.samples.len())
                 .into_par_iter()
                 .map(|k| self.extended(band, k))
                 .collect(),

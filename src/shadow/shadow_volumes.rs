@@ -131,7 +131,7 @@ impl Source {
         match light.reach() {
             Reach::Direction { direction, .. } => Source::Distant(direction),
             Reach::Point { at, .. } => Source::Point(at),
-            Reach::Extended => Source::Point(light.position().expect("checked")),
+            Reach::Extended { .. } => Source::Point(light.position().expect("checked")),
         }
     }
 

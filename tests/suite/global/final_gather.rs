@@ -447,3 +447,79 @@ fn the_cache_is_swept_once_per_camera() {
     renderer.render().unwrap();
     assert_eq!(renderer.irradiance_caches_swept(), 2);
 }
+
+/// Where a gather ray lands in a penumbra, the direct light computed there is the
+/// irradiance of the part of the lamp it sees, times ρ/π: the lamp of
+/// `floor_and_square` (the unit square over [0, 1]² at height 1), a blind at
+/// height ½ over x < ¼ that hides the lamp's half x < ½ from the floor's point
+/// (0, 0, ½), under the lamp's edge. The near half, hidden, is the brighter one:
+/// the visible half's share of the area (½) is not its share of the irradiance.
+#[test]
+fn direct_light_at_a_gather_hit_in_a_penumbra_is_the_visible_parts_irradiance() {
+    let rho = 0.5;
+    let mut text = format!(
+        "{}[radiosity]\nsolver = \"gathering\"\nresolution = 32\npatch_size = 1.0\nelement_size = 1.0\n\n[global]\nmethod = \"two-pass\"\nexact_direct = true\n\n[global.final_gather]\nrays = 16\ndirect_at_hits = true\n\n[materials.floor]\ndiffuse = [{rho}, {rho}, {rho}]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[materials.blind]\ndiffuse = [0.0, 0.0, 0.0]\n\n",
+        camera()
+    );
+    let floor = [
+        DVec3::new(-3.0, 0.0, -3.0),
+        DVec3::new(4.0, 0.0, -3.0),
+        DVec3::new(4.0, 0.0, 4.0),
+        DVec3::new(-3.0, 0.0, 4.0),
+    ];
+    text += &polygon("floor", "floor", floor, DVec3::Y);
+    text += &polygon("lamp", "lamp", square(1, 1.0), -DVec3::Y);
+    let blind = [
+        DVec3::new(-3.0, 0.5, -3.0),
+        DVec3::new(0.25, 0.5, -3.0),
+        DVec3::new(0.25, 0.5, 4.0),
+        DVec3::new(-3.0, 0.5, 4.0),
+    ];
+    text += &polygon("blind", "blind", blind, -DVec3::Y);
+    let scene = scene_from_text(&text, &[]);
+    let settings = scene.radiosity.clone().unwrap();
+    let solution = radiosity::solve(&scene, &settings, &mut |_, _| {}).unwrap();
+    let gather_settings = scene.global.as_ref().unwrap().final_gather.unwrap();
+    let traced = Arc::new(TracedScene::new(&scene, false));
+    let gather = FinalGather::new(&scene, &solution, traced.clone(), gather_settings);
+
+    // A gather ray coming straight down onto the floor at x, from under the blind.
+    let x = DVec3::new(0.0, 0.0, 0.5);
+    let down = -DVec3::Y;
+    let hit = traced
+        .closest(x + DVec3::Y * 0.3, down, f64::INFINITY, Leaving::Eye)
+        .expect("the floor");
+    assert!((hit.position - x).length() < 1e-9);
+
+    let visible = [
+        DVec3::new(0.5, 1.0, 0.0),
+        DVec3::new(1.0, 1.0, 0.0),
+        DVec3::new(1.0, 1.0, 1.0),
+        DVec3::new(0.5, 1.0, 1.0),
+    ];
+    let exact = rho / PI * lambert(x, DVec3::Y, &visible, 1.0);
+    // One ray's visibility times the unshadowed light: the visible share of the area.
+    let area_share = rho / PI * 0.5 * lambert(x, DVec3::Y, &square(1, 1.0), 1.0);
+    assert!(
+        (area_share - exact).abs() > 0.1 * exact,
+        "{area_share} {exact}"
+    );
+
+    let n = 200_000;
+    let mut stream = Stream::new(11, 0);
+    let (mut sum, mut sum2) = (0.0, 0.0);
+    for _ in 0..n {
+        let found = gather.direct_at(&scene, &hit, down, &mut stream).x as f64;
+        sum += found;
+        sum2 += found * found;
+    }
+    let mean = sum / n as f64;
+    let standard_error = ((sum2 / n as f64 - mean * mean) / n as f64).sqrt();
+    eprintln!(
+        "direct at the hit: {mean:.5} ± {standard_error:.5}, visible part {exact:.5}, area share {area_share:.5}"
+    );
+    assert!(
+        (mean - exact).abs() < 4.0 * standard_error && (mean - exact).abs() < 0.01 * exact,
+        "{mean} ± {standard_error} against the visible part's {exact}"
+    );
+}

@@ -58,12 +58,23 @@ fn each_kind_reaches_the_scene_as_its_geometry_says() {
                     irradiance: Vec3::new(1.0, 2.0, 3.0)
                 }
             ),
-            LightKind::Sphere | LightKind::Polygon => assert_eq!(reach, Reach::Extended),
+            LightKind::Sphere => assert_eq!(
+                reach,
+                Reach::Extended {
+                    radiance: Vec3::splat(2.0)
+                }
+            ),
+            LightKind::Polygon => assert_eq!(
+                reach,
+                Reach::Extended {
+                    radiance: Vec3::ONE
+                }
+            ),
         }
         // The position is the point it reaches from, and nothing else has one.
         match reach {
             Reach::Point { at, .. } => assert_eq!(l.position(), Some(at)),
-            Reach::Direction { .. } | Reach::Extended => assert_eq!(l.position(), None),
+            Reach::Direction { .. } | Reach::Extended { .. } => assert_eq!(l.position(), None),
         }
         // Only a polygon light is a polygon of the scene: the floor is polygon 0.
         assert_eq!(
