@@ -5,8 +5,9 @@
 //! are built the first time a frame needs them and reused after (texture pyramids
 //! and summed-area tables are built once, with the scene), and so are environment
 //! maps captured from the scene.
-//! Moving the camera invalidates none of it; moving a light, only that light's
-//! shadows; changing the shadow settings, every light's shadows.
+//! Moving the camera invalidates none of it; moving a light, that light's
+//! shadows and a radiosity solution (which holds the lights that are not
+//! polygons); changing the shadow settings, every light's shadows.
 
 use super::accumulation::render_rotated_grid;
 use super::buffers::available;
@@ -166,8 +167,10 @@ impl Renderer {
         self.scene.camera = camera;
     }
 
-    /// Moves or changes light `index`: its shadows are redone. A polygon light is a
-    /// polygon of the scene (geometry), which a renderer does not change.
+    /// Moves or changes light `index`: its shadows are redone, and a radiosity
+    /// solution, which holds every light but the polygon lights, is solved again. A
+    /// polygon light is a polygon of the scene (geometry), which a renderer does not
+    /// change.
     pub fn set_light(&mut self, index: usize, light: Light) -> Result<()> {
         let Some(old) = self.scene.lights.get(index) else {
             return Err(Error::Light {
@@ -186,6 +189,9 @@ impl Renderer {
         }
         self.scene.lights[index] = light;
         *self.lights[index].lock().expect("no poisoned lock") = None;
+        if let Some(reader) = self.kept.solution() {
+            reader.forget();
+        }
         self.forget_captures();
         Ok(())
     }

@@ -162,6 +162,10 @@ pub trait ReadsSolution {
     /// Whether a solution is kept (solved, or handed over).
     fn has_solution(&self) -> bool;
 
+    /// Drops the solution and what was made from it: a light it holds moved (the
+    /// point, spot, distant and sphere lights are shot into it).
+    fn forget(&self);
+
     /// Solutions it solved itself.
     fn solved(&self) -> usize;
 }

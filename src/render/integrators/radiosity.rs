@@ -54,6 +54,10 @@ impl ReadsSolution for KeptRadiosity {
         self.0.is_kept()
     }
 
+    fn forget(&self) {
+        self.0.forget();
+    }
+
     fn solved(&self) -> usize {
         self.0.solved()
     }

@@ -91,6 +91,11 @@ impl KeptSolution {
         *self.drawn.lock().expect("no poisoned lock") = Some(solution);
     }
 
+    /// Drops the solution: the next frame solves again.
+    pub fn forget(&self) {
+        *self.drawn.lock().expect("no poisoned lock") = None;
+    }
+
     pub fn is_kept(&self) -> bool {
         self.drawn.lock().expect("no poisoned lock").is_some()
     }

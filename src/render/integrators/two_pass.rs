@@ -197,6 +197,13 @@ impl ReadsSolution for KeptTwoPass {
         self.solution.is_kept()
     }
 
+    fn forget(&self) {
+        self.solution.forget();
+        *self.final_gather.lock().expect("no poisoned lock") = None;
+        *self.second.lock().expect("no poisoned lock") = None;
+        *self.view_gather.lock().expect("no poisoned lock") = None;
+    }
+
     fn solved(&self) -> usize {
         self.solution.solved()
     }

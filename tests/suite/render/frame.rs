@@ -174,6 +174,28 @@ fn the_renderer_keeps_view_independent_work() {
     renderer.set_camera(camera);
     renderer.render().unwrap();
     assert_eq!(renderer.prepasses().radiosity, 1);
+
+    // A light the solution holds moved: solved again, as a fresh renderer would.
+    let base = scene(
+        "radiosity-point-light",
+        &["camera.width=24", "camera.height=24"],
+    );
+    let mut renderer = Renderer::new(base.clone());
+    renderer.render().unwrap();
+    let Light::Point(mut lamp) = base.lights[0].clone() else {
+        panic!("a point light")
+    };
+    lamp.position.y -= 0.1;
+    renderer.set_light(0, Light::Point(lamp.clone())).unwrap();
+    let relit = renderer.render().unwrap();
+    assert_eq!(renderer.prepasses().radiosity, 2, "a moved light");
+    let mut fresh_scene = base.clone();
+    fresh_scene.lights[0] = Light::Point(lamp);
+    assert_same(
+        &relit,
+        &render(&fresh_scene).unwrap(),
+        "radiosity-point-light",
+    );
 }
 
 /// The buffers are what the passes computed: the polygon ids are the visible-surface
