@@ -64,19 +64,21 @@ fn lambert(x: DVec3, n: DVec3, corners: &[DVec3], radiance: f64) -> f64 {
     0.5 * radiance * sum.abs()
 }
 
+/// The floor under the lamp: a square 7 units a side at height 0.
+const FLOOR: [DVec3; 4] = [
+    DVec3::new(-3.0, 0.0, -3.0),
+    DVec3::new(4.0, 0.0, -3.0),
+    DVec3::new(4.0, 0.0, 4.0),
+    DVec3::new(-3.0, 0.0, 4.0),
+];
+
 /// A floor and, above it, an emitting unit square at height 1 over [0, 1]².
 fn floor_and_square() -> (Scene, Vec<DVec3>) {
     let mut text = format!(
         "{}[materials.floor]\ndiffuse = [0.5, 0.5, 0.5]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n",
         camera()
     );
-    let floor = [
-        DVec3::new(-3.0, 0.0, -3.0),
-        DVec3::new(4.0, 0.0, -3.0),
-        DVec3::new(4.0, 0.0, 4.0),
-        DVec3::new(-3.0, 0.0, 4.0),
-    ];
-    text += &polygon("floor", "floor", floor, DVec3::Y);
+    text += &polygon("floor", "floor", FLOOR, DVec3::Y);
     let lamp = square(1, 1.0);
     text += &polygon("lamp", "lamp", lamp, -DVec3::Y);
     (scene_from_text(&text, &[]), lamp.to_vec())
@@ -461,13 +463,7 @@ fn direct_light_at_a_gather_hit_in_a_penumbra_is_the_visible_parts_irradiance() 
         "{}[radiosity]\nsolver = \"gathering\"\nresolution = 32\npatch_size = 1.0\nelement_size = 1.0\n\n[global]\nmethod = \"two-pass\"\nexact_direct = true\n\n[global.final_gather]\nrays = 16\ndirect_at_hits = true\n\n[materials.floor]\ndiffuse = [{rho}, {rho}, {rho}]\n\n[materials.lamp]\nemission = [1.0, 1.0, 1.0]\n\n[materials.blind]\ndiffuse = [0.0, 0.0, 0.0]\n\n",
         camera()
     );
-    let floor = [
-        DVec3::new(-3.0, 0.0, -3.0),
-        DVec3::new(4.0, 0.0, -3.0),
-        DVec3::new(4.0, 0.0, 4.0),
-        DVec3::new(-3.0, 0.0, 4.0),
-    ];
-    text += &polygon("floor", "floor", floor, DVec3::Y);
+    text += &polygon("floor", "floor", FLOOR, DVec3::Y);
     text += &polygon("lamp", "lamp", square(1, 1.0), -DVec3::Y);
     let blind = [
         DVec3::new(-3.0, 0.5, -3.0),
