@@ -379,6 +379,9 @@ pub enum GlobalMethod {
     /// Rushmeier & Torrance 1990: pass 1 extended to specular transmission through
     /// thin panes and diffuse transmission through translucent panels.
     RushmeierTorrance,
+    /// Kajiya 1986: the rendering equation by path tracing, one path a sample, the
+    /// lights sampled at every vertex.
+    PathTracing,
 }
 
 impl GlobalMethod {
@@ -386,16 +389,17 @@ impl GlobalMethod {
     /// methods do; ray tracing reads none).
     pub fn reads_radiosity(self) -> bool {
         match self {
-            GlobalMethod::RayTracing => false,
+            GlobalMethod::RayTracing | GlobalMethod::PathTracing => false,
             GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance => true,
         }
     }
 
     /// Whether the method antialiases its frame itself (Whitted's adaptive
-    /// subdivision), so that `render.supersample` must stay 1.
+    /// subdivision, the path tracer's samples over the pixel), so that
+    /// `render.supersample` must stay 1.
     pub fn antialiases_itself(self) -> bool {
         match self {
-            GlobalMethod::RayTracing => true,
+            GlobalMethod::RayTracing | GlobalMethod::PathTracing => true,
             GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance => false,
         }
     }
@@ -404,7 +408,7 @@ impl GlobalMethod {
     /// methods' reflection frustum), so that a material's `gloss` is read.
     pub fn reads_gloss(self) -> bool {
         match self {
-            GlobalMethod::RayTracing => false,
+            GlobalMethod::RayTracing | GlobalMethod::PathTracing => false,
             GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance => true,
         }
     }
@@ -415,6 +419,7 @@ impl GlobalMethod {
             GlobalMethod::RayTracing => "ray-tracing",
             GlobalMethod::TwoPass => "two-pass",
             GlobalMethod::RushmeierTorrance => "rushmeier-torrance",
+            GlobalMethod::PathTracing => "path-tracing",
         }
     }
 }
@@ -461,8 +466,11 @@ pub enum SpecularWeights {
 pub struct GlobalSettings {
     /// Whitted's ray tracing or a two-pass method.
     pub method: GlobalMethod,
-    /// Longest chain of reflected and refracted rays from the eye.
+    /// Longest chain of reflected and refracted rays from the eye (the path
+    /// tracer: the most bounces a path takes).
     pub depth: u32,
+    /// The path tracer: paths per pixel, n × n (stratified over the pixel).
+    pub samples: u32,
     /// A ray is not spawned when the product of the coefficients along its path
     /// falls below this (each band's largest).
     pub threshold: f64,

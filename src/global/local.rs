@@ -8,7 +8,17 @@ use crate::scene::lights::DISTANT_REACH;
 use crate::scene::{Light, Reach, Reflectance, Scene};
 use crate::shading::light_model::{SurfacePoint, reflected};
 use crate::texture::Interpolation;
+use crate::texture::environment::EnvironmentMap;
 use glam::{DVec2, DVec3, Vec3};
+
+/// What a ray that leaves the scene along `direction` brings back: the backdrop
+/// environment, or else the background colour.
+pub fn background(scene: &Scene, backdrop: Option<&EnvironmentMap>, direction: DVec3) -> Vec3 {
+    match backdrop {
+        Some(map) => map.lookup(direction, [DVec3::ZERO; 2]),
+        None => scene.render.background,
+    }
+}
 
 /// The reflectance at a hit, its material's textures applied (unfiltered: level
 /// 0 of a pyramid; Whitted antialiased by subdividing pixels instead).

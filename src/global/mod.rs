@@ -11,12 +11,15 @@
 //!   solution at visible points (Reichert 1992; Lischinski, Tampieri & Greenberg
 //!   1993), through `irradiance_cache` (Ward, Rubinstein & Clear 1988; Ward &
 //!   Heckbert 1992); `solution_radiance` reads the solution where rays land;
+//! - `path_tracing`: the rendering equation by path tracing (Kajiya 1986), the
+//!   ground truth the others are measured against;
 //! - `reflection_frustum`: how the second pass gathers a glossy reflection
 //!   (Wallace, Cohen & Greenberg 1987).
 
 pub mod final_gather;
 pub mod irradiance_cache;
 pub mod local;
+pub mod path_tracing;
 pub mod reflection_frustum;
 pub mod solution_radiance;
 pub mod traced_scene;

@@ -42,7 +42,7 @@
 //! object leaves it into vacuum (no nested media); under an extended light the
 //! shadow ray becomes N × N stratified rays over the emitter (`shadows.light_samples`).
 
-use super::local::{lights_at, reflectance_at};
+use super::local::{background, lights_at, reflectance_at};
 use super::traced_scene::{Leaving, SurfaceHit, TracedScene};
 use crate::image_io::Image;
 use crate::raster::View;
@@ -141,17 +141,10 @@ impl<'a> Whitted<'a> {
         {
             Some(hit) => self.shade(&hit, direction, depth, weight, stream),
             None => Traced {
-                radiance: self.background(direction),
+                radiance: background(self.scene, self.backdrop, direction),
                 rays: 1,
                 object: None,
             },
-        }
-    }
-
-    fn background(&self, direction: DVec3) -> Vec3 {
-        match self.backdrop {
-            Some(map) => map.lookup(direction, [DVec3::ZERO; 2]),
-            None => self.scene.render.background,
         }
     }
 

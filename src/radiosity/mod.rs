@@ -179,7 +179,7 @@ pub fn extension(scene: &Scene) -> Option<extended::Extension> {
     use crate::settings::{GlobalMethod, Mechanisms};
     let g = scene.global.as_ref()?;
     let follow = match g.method {
-        GlobalMethod::RayTracing => return None,
+        GlobalMethod::RayTracing | GlobalMethod::PathTracing => return None,
         GlobalMethod::TwoPass => windows::Follow {
             mirrors: true,
             panes: false,

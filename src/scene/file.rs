@@ -175,8 +175,10 @@ fn subdivision_levels() -> u32 {
 #[serde(deny_unknown_fields)]
 pub struct GlobalFile {
     pub method: crate::settings::GlobalMethod,
-    /// Absent: 5.
+    /// Absent: 5 (the path tracer: 1,000).
     pub depth: Option<u32>,
+    /// Absent: 4 (the path tracer's 4 x 4 paths a pixel).
+    pub samples: Option<u32>,
     /// Absent: 10⁻³.
     pub threshold: Option<f64>,
     /// Absent: 2.
@@ -206,6 +208,7 @@ impl GlobalFile {
         let GlobalFile {
             method: _,
             depth,
+            samples,
             threshold,
             subdivisions,
             contrast,
@@ -220,6 +223,7 @@ impl GlobalFile {
         } = self;
         [
             ("global.depth", depth.is_some()),
+            ("global.samples", samples.is_some()),
             ("global.threshold", threshold.is_some()),
             ("global.subdivisions", subdivisions.is_some()),
             ("global.contrast", contrast.is_some()),

@@ -4,7 +4,7 @@ use super::file::{FinalGatherFile, GlobalFile, MechanismFile};
 use super::validate::colour;
 use crate::error::Result;
 use crate::error::ensure_valid;
-use crate::settings::{FinalGatherSettings, GlobalSettings as Settings, Mechanisms};
+use crate::settings::{FinalGatherSettings, GlobalMethod, GlobalSettings as Settings, Mechanisms};
 
 /// The longest ray tree `depth` allows: rays grow as 2^depth under glass.
 pub const MAX_DEPTH: u32 = 16;
@@ -16,6 +16,15 @@ pub const MAX_WINDOW_DEPTH: u32 = 4;
 pub const MAX_GATHER_RAYS: u32 = 1 << 20;
 /// Reflected and refracted rays from the eye when the scene gives none.
 const DEFAULT_DEPTH: u32 = 5;
+/// A path's bounces when the scene gives none: a safeguard (Russian roulette ends
+/// paths long before under albedos below 1), not a choice of the method.
+pub const DEFAULT_PATH_DEPTH: u32 = 1000;
+/// A path's longest allowed chain: one ray a bounce, so depth costs linearly.
+pub const MAX_PATH_DEPTH: u32 = 1_000_000;
+/// The path tracer's n x n paths a pixel when the scene gives none.
+const DEFAULT_PATH_SAMPLES: u32 = 4;
+/// 1024 x 1024 paths a pixel: a million, far beyond any converged image.
+pub const MAX_PATH_SAMPLES: u32 = 1024;
 /// A ray's least weight when the scene gives none.
 const DEFAULT_THRESHOLD: f64 = 1e-3;
 /// Whitted's subdivision levels when the scene gives none.
@@ -30,15 +39,36 @@ const DEFAULT_FRUSTUM_RESOLUTION: u32 = 10;
 pub const MAX_FRUSTUM_RESOLUTION: u32 = 256;
 
 pub fn from_file(g: &GlobalFile) -> Result<Settings> {
-    let depth = g.depth.unwrap_or(DEFAULT_DEPTH);
+    let paths = g.method == GlobalMethod::PathTracing;
+    let depth = g.depth.unwrap_or(if paths {
+        DEFAULT_PATH_DEPTH
+    } else {
+        DEFAULT_DEPTH
+    });
     let threshold = g.threshold.unwrap_or(DEFAULT_THRESHOLD);
     let subdivisions = g.subdivisions.unwrap_or(DEFAULT_SUBDIVISIONS);
     let contrast = g.contrast.unwrap_or(DEFAULT_CONTRAST);
+    if paths {
+        ensure_valid!(
+            (1..=MAX_PATH_DEPTH).contains(&depth),
+            "global.depth",
+            "global.depth must be from 1 to {MAX_PATH_DEPTH} bounces of a path, got {}",
+            depth
+        );
+    } else {
+        ensure_valid!(
+            depth <= MAX_DEPTH,
+            "global.depth",
+            "global.depth must be at most {MAX_DEPTH} (a ray tree under glass doubles with each level), got {}",
+            depth
+        );
+    }
+    let samples = g.samples.unwrap_or(DEFAULT_PATH_SAMPLES);
     ensure_valid!(
-        depth <= MAX_DEPTH,
-        "global.depth",
-        "global.depth must be at most {MAX_DEPTH} (a ray tree under glass doubles with each level), got {}",
-        depth
+        (1..=MAX_PATH_SAMPLES).contains(&samples),
+        "global.samples",
+        "global.samples must be from 1 to {MAX_PATH_SAMPLES} (n x n paths a pixel), got {}",
+        samples
     );
     ensure_valid!(
         threshold.is_finite() && (0.0..1.0).contains(&threshold),
@@ -95,6 +125,7 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
     Ok(Settings {
         method: g.method,
         depth,
+        samples,
         threshold,
         subdivisions,
         contrast,

@@ -75,8 +75,10 @@ fn point_contribution(
     (material.diffuse / PI + specular_brdf(point, material, l)) * irradiance
 }
 
+/// Phong's energy-normalised lobe, the BRDF f = k_s (e + 2)/(2π) cosᵉ α for light
+/// arriving along unit `l`.
 #[inline(always)]
-fn specular_brdf(point: &SurfacePoint, material: &Reflectance, l: DVec3) -> Vec3 {
+pub fn specular_brdf(point: &SurfacePoint, material: &Reflectance, l: DVec3) -> Vec3 {
     if material.specular == Vec3::ZERO {
         return Vec3::ZERO;
     }

@@ -42,11 +42,12 @@ pub fn already_made(suite: &Path, id: &str, settings: &Settings) -> Option<Entry
 pub fn make(suite: &Path, id: &str, settings: &Settings) -> Result<EntryRecord> {
     let entry = catalogue::entry(id)?;
     let (width, height) = size(id, &entry.algorithm, settings.width)?;
-    // Whitted's tracer antialiases by its own adaptive subdivision and refuses
-    // supersampling: its entries keep one sample a pixel.
+    // The tracers antialias by themselves (Whitted's adaptive subdivision, the
+    // path tracer's paths over the pixel) and refuse supersampling: their entries
+    // keep one sample a pixel.
     let traced = load_scene(id, &[])?
         .global
-        .is_some_and(|g| g.method == lumiere::settings::GlobalMethod::RayTracing);
+        .is_some_and(|g| g.method.antialiases_itself());
     let supersample = if traced { 1 } else { settings.supersample };
     let sets = vec![
         format!("camera.width={width}"),

@@ -17,6 +17,7 @@
 //! each match that must learn of it.
 
 mod direct;
+mod path_tracing;
 mod radiosity;
 mod ray_tracing;
 mod rushmeier_torrance;
@@ -58,15 +59,18 @@ pub enum Integrator {
     RushmeierTorrance,
     /// Whitted 1980: recursive rays from the eye.
     RayTracing,
+    /// Kajiya 1986: the rendering equation by path tracing.
+    PathTracing,
 }
 
 /// Every integrator, in the order lists show them.
-pub const INTEGRATORS: [Integrator; 5] = [
+pub const INTEGRATORS: [Integrator; 6] = [
     Integrator::Direct,
     Integrator::Radiosity,
     Integrator::TwoPass,
     Integrator::RushmeierTorrance,
     Integrator::RayTracing,
+    Integrator::PathTracing,
 ];
 
 /// The registry: what `integrator` declares of itself.
@@ -77,6 +81,7 @@ pub fn declaration(integrator: Integrator) -> &'static Declaration {
         Integrator::TwoPass => &two_pass::DECLARATION,
         Integrator::RushmeierTorrance => &rushmeier_torrance::DECLARATION,
         Integrator::RayTracing => &ray_tracing::DECLARATION,
+        Integrator::PathTracing => &path_tracing::DECLARATION,
     }
 }
 
@@ -89,6 +94,7 @@ impl Integrator {
                 GlobalMethod::RayTracing => Integrator::RayTracing,
                 GlobalMethod::TwoPass => Integrator::TwoPass,
                 GlobalMethod::RushmeierTorrance => Integrator::RushmeierTorrance,
+                GlobalMethod::PathTracing => Integrator::PathTracing,
             },
             (None, Some(_)) => Integrator::Radiosity,
             (None, None) => Integrator::Direct,

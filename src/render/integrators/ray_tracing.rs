@@ -40,43 +40,58 @@ pub static DECLARATION: Declaration = Declaration {
     buffers: &[RAYS.0],
     role: Role::OwnFrame,
     direct_lights: no_light,
-    check,
-    kept: || Box::new(KeptTracer(Mutex::new(None))),
+    check: refuse_shadow_method,
+    kept: || Box::new(KeptTracedScene::new(|traced| Arc::new(Tracer { traced }))),
 };
 
-/// Whitted's tracer adds every light itself, with its own shadow rays.
-fn no_light(scene: &Scene) -> Vec<bool> {
+/// A tracer adds every light itself, with its own shadow rays.
+pub(super) fn no_light(scene: &Scene) -> Vec<bool> {
     vec![false; scene.lights.len()]
 }
 
-/// Refuses a shadow method, which the tracer's shadow rays would replace.
-fn check(scene: &Scene) -> Result<()> {
+/// Refuses a shadow method, which a tracer's shadow rays would replace.
+pub(super) fn refuse_shadow_method(scene: &Scene) -> Result<()> {
     let method = scene.shadows.method;
     if method == ShadowMethod::None {
         return Ok(());
     }
+    let global = scene
+        .global
+        .as_ref()
+        .map_or("ray-tracing", |g| g.method.name());
     Err(Error::invalid(
         "shadows.method",
         format!(
-            "shadows.method = \"{}\": ray tracing (global.method = \"ray-tracing\") casts its own shadow rays and would ignore it; leave it out, or remove [global]",
-            method.name()
+            "shadows.method = \"{}\": {} (global.method = \"{global}\") casts its own shadow rays and would ignore it; leave it out, or remove [global]",
+            method.name(),
+            global.replace('-', " ")
         ),
     ))
 }
 
-/// The scene as rays see it, built once (geometry never changes).
-struct KeptTracer(Mutex<Option<Arc<Tracer>>>);
+/// The scene as rays see it, built once (geometry never changes), and the frame
+/// maker over it.
+pub(super) struct KeptTracedScene {
+    frame: Mutex<Option<Arc<dyn OwnFrame>>>,
+    over: fn(Arc<TracedScene>) -> Arc<dyn OwnFrame>,
+}
 
-impl Kept for KeptTracer {
+impl KeptTracedScene {
+    pub(super) fn new(over: fn(Arc<TracedScene>) -> Arc<dyn OwnFrame>) -> KeptTracedScene {
+        KeptTracedScene {
+            frame: Mutex::new(None),
+            over,
+        }
+    }
+}
+
+impl Kept for KeptTracedScene {
     fn lighting(&self, scene: &Scene) -> Result<Lighting> {
-        let mut slot = self.0.lock().expect("no poisoned lock");
+        let mut slot = self.frame.lock().expect("no poisoned lock");
         let analytic = scene.global.as_ref().is_none_or(|g| g.analytic_spheres);
-        let tracer = slot.get_or_insert_with(|| {
-            Arc::new(Tracer {
-                traced: TracedScene::new(scene, analytic),
-            })
-        });
-        Ok(Lighting::OwnFrame(tracer.clone()))
+        let frame =
+            slot.get_or_insert_with(|| (self.over)(Arc::new(TracedScene::new(scene, analytic))));
+        Ok(Lighting::OwnFrame(frame.clone()))
     }
 
     fn solution(&self) -> Option<&dyn ReadsSolution> {
@@ -90,7 +105,7 @@ impl Kept for KeptTracer {
 
 /// Whitted's tracer over the scene as rays see it.
 struct Tracer {
-    traced: TracedScene,
+    traced: Arc<TracedScene>,
 }
 
 impl OwnFrame for Tracer {

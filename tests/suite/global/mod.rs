@@ -3,6 +3,7 @@
 
 mod final_gather;
 mod mitsuba;
+mod path_tracing;
 mod ray_tracing;
 mod reflection_frustum;
 mod two_pass;

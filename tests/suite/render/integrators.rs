@@ -16,14 +16,16 @@ fn listed_at(integrator: Integrator) -> usize {
         Integrator::TwoPass => 2,
         Integrator::RushmeierTorrance => 3,
         Integrator::RayTracing => 4,
+        Integrator::PathTracing => 5,
     }
 }
 
 /// Every scene key an integrator may read, with a valid value to set it to (as
 /// `--set` writes it), apart from the registry.
-const KEYS: [(&str, &str); 13] = [
+const KEYS: [(&str, &str); 14] = [
     ("radiosity", "radiosity.solver=\"gathering\""),
     ("global.depth", "global.depth=3"),
+    ("global.samples", "global.samples=2"),
     ("global.threshold", "global.threshold=0.01"),
     ("global.subdivisions", "global.subdivisions=1"),
     ("global.contrast", "global.contrast=0.1"),
@@ -43,7 +45,8 @@ const KEYS: [(&str, &str); 13] = [
 /// The keys each method's paper reads, written out here: Whitted's tracer its ray
 /// tree, antialiasing, weights, spheres and ambient term; the two-pass methods the
 /// radiosity solution, the ray tree of pass 2, mirror windows, the reflection
-/// frustum, the mechanisms, exact direct light and the final gather.
+/// frustum, the mechanisms, exact direct light and the final gather; Kajiya's path
+/// tracer its paths' depth, their number and the spheres.
 fn papers_keys(integrator: Integrator) -> Vec<&'static str> {
     let two_pass = vec![
         "radiosity",
@@ -68,6 +71,9 @@ fn papers_keys(integrator: Integrator) -> Vec<&'static str> {
             "global.analytic_spheres",
             "global.ambient",
         ],
+        Integrator::PathTracing => {
+            vec!["global.depth", "global.samples", "global.analytic_spheres"]
+        }
     }
 }
 
@@ -79,6 +85,7 @@ fn entry(integrator: Integrator, sets: &[&str]) -> lumiere::Result<Scene> {
         Integrator::TwoPass => "two-pass-final-gather",
         Integrator::RushmeierTorrance => "rushmeier-torrance",
         Integrator::RayTracing => "ray-tracing",
+        Integrator::PathTracing => "path-tracing",
     };
     let mut all = vec!["camera.width=8".to_string(), "camera.height=6".to_string()];
     all.extend(sets.iter().map(|s| s.to_string()));
@@ -112,7 +119,10 @@ fn the_registry_lists_every_integrator_once_and_the_scene_file_chooses_it_by_nam
         assert_eq!(Integrator::of(&scene), integrator, "{}", declared.name);
         chosen += 1;
     }
-    assert_eq!(chosen, 3, "ray tracing and the two two-pass methods");
+    assert_eq!(
+        chosen, 4,
+        "ray tracing, the two two-pass methods and path tracing"
+    );
 }
 
 #[test]
@@ -145,6 +155,7 @@ fn each_integrator_chosen_by_global_method_accepts_exactly_the_keys_it_declares(
         Integrator::TwoPass,
         Integrator::RushmeierTorrance,
         Integrator::RayTracing,
+        Integrator::PathTracing,
     ] {
         let declared = declaration(integrator);
         accepted(integrator, &[]).unwrap();
