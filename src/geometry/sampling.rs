@@ -9,7 +9,8 @@
 //! 64-bit counter stepped by the golden-ratio increment, each value passed through
 //! a bijective mixing function.
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
+use std::f64::consts::TAU;
 
 /// The golden-ratio increment of SplitMix64 (2⁶⁴/φ, odd).
 const GOLDEN_GAMMA: u64 = 0x9E37_79B9_7F4A_7C15;
@@ -63,6 +64,37 @@ impl Stream {
         }
         points
     }
+}
+
+/// A direction about unit `normal` with density cos θ / π (Malley's method: a
+/// uniform point on the unit disc lifted to the hemisphere), for u, v in [0, 1).
+pub fn cosine_weighted(normal: DVec3, u: f64, v: f64) -> DVec3 {
+    let r = u.sqrt();
+    let phi = TAU * v;
+    let (t, b) = normal.any_orthonormal_pair();
+    let z = (1.0 - u).max(0.0).sqrt();
+    (t * (r * phi.cos()) + b * (r * phi.sin()) + normal * z).normalize()
+}
+
+/// A direction about unit `axis` with density (e + 1)/(2π) cosᵉ α, α from the
+/// axis, for u, v in [0, 1).
+pub fn phong_lobe(axis: DVec3, e: f64, u: f64, v: f64) -> DVec3 {
+    let cos = (1.0 - u).powf(1.0 / (e + 1.0));
+    around(axis, cos, v)
+}
+
+/// A direction uniform over the cone of half-angle α about unit `axis` (density
+/// 1 / (2π (1 − cos α))), for u, v in [0, 1); α = π gives the whole sphere.
+pub fn uniform_cone(axis: DVec3, cos_alpha: f64, u: f64, v: f64) -> DVec3 {
+    around(axis, 1.0 - u * (1.0 - cos_alpha), v)
+}
+
+/// The direction at cos θ from unit `axis`, at azimuth 2π v about it.
+fn around(axis: DVec3, cos: f64, v: f64) -> DVec3 {
+    let sin = (1.0 - cos * cos).max(0.0).sqrt();
+    let phi = TAU * v;
+    let (t, b) = axis.any_orthonormal_pair();
+    (t * (sin * phi.cos()) + b * (sin * phi.sin()) + axis * cos).normalize()
 }
 
 #[cfg(test)]

@@ -49,7 +49,7 @@
 use super::local::{background, reflectance_at};
 use super::traced_scene::{Leaving, SurfaceHit, TracedScene};
 use super::whitted::{reflected_direction, refracted_direction};
-use crate::geometry::sampling::Stream;
+use crate::geometry::sampling::{Stream, cosine_weighted, phong_lobe};
 use crate::image_io::Image;
 use crate::raster::View;
 use crate::scene::{Light, Material, Reach, Reflectance, Scene};
@@ -59,7 +59,6 @@ use crate::shading::optics::fresnel;
 use crate::texture::environment::EnvironmentMap;
 use glam::{DVec2, DVec3, Vec3};
 use rayon::prelude::*;
-use std::f64::consts::TAU;
 
 /// A path tracer over one scene.
 pub struct PathTracer<'a> {
@@ -93,12 +92,42 @@ pub struct PathFrame {
 }
 
 /// How a path goes on from a vertex.
-struct Bounce {
-    direction: DVec3,
+pub(crate) struct Bounce {
+    pub direction: DVec3,
     /// f cos θ / pdf over the kind's probability.
-    weight: Vec3,
+    pub weight: Vec3,
     /// A mirror, refraction or a pane: the light the next ray meets is counted.
-    specular: bool,
+    pub specular: bool,
+}
+
+/// A surface's specular coefficients for a ray along `direction` meeting it from
+/// outside (`front`) or inside: the mirror's and the transmitted ray's, with the
+/// indices of the medium left and entered. Glass (an `ior`): Fresnel's F tinted
+/// by `mirror` (white when 0) and 1 − F by `transmittance`; else the constants.
+pub(crate) fn specular_coefficients(
+    material: &Material,
+    normal: DVec3,
+    direction: DVec3,
+    front: bool,
+) -> (Vec3, Vec3, f64, f64) {
+    let (eta1, eta2) = match material.ior {
+        Some(ior) if front => (1.0, ior),
+        Some(ior) => (ior, 1.0),
+        None => (1.0, 1.0),
+    };
+    let (mirror, transmitted) = match material.ior {
+        Some(_) => {
+            let f = fresnel(normal.dot(-direction), eta1, eta2) as f32;
+            let tint = if material.mirror == Vec3::ZERO {
+                Vec3::ONE
+            } else {
+                material.mirror
+            };
+            (tint * f, material.transmittance * (1.0 - f))
+        }
+        None => (material.mirror, material.transmittance),
+    };
+    (mirror, transmitted, eta1, eta2)
 }
 
 impl<'a> PathTracer<'a> {
@@ -334,7 +363,7 @@ fn emission(light: &Light) -> Vec3 {
 /// proportion to its reflectance (each kind's largest band), the rest of the unit
 /// interval absorbing the path (`None`), then its direction. `direction` is the
 /// incoming ray's, `front` whether it meets the surface from outside.
-fn scatter(
+pub(crate) fn scatter(
     material: &Material,
     reflectance: &Reflectance,
     normal: DVec3,
@@ -343,24 +372,8 @@ fn scatter(
     front: bool,
     stream: &mut Stream,
 ) -> Option<Bounce> {
-    // Indices of the medium left and the medium entered.
-    let (eta1, eta2) = match material.ior {
-        Some(ior) if front => (1.0, ior),
-        Some(ior) => (ior, 1.0),
-        None => (1.0, 1.0),
-    };
-    let (mirror, transmitted) = match material.ior {
-        Some(_) => {
-            let f = fresnel(normal.dot(-direction), eta1, eta2) as f32;
-            let tint = if material.mirror == Vec3::ZERO {
-                Vec3::ONE
-            } else {
-                material.mirror
-            };
-            (tint * f, material.transmittance * (1.0 - f))
-        }
-        None => (material.mirror, material.transmittance),
-    };
+    let (mirror, transmitted, eta1, eta2) =
+        specular_coefficients(material, normal, direction, front);
     let kinds = [
         reflectance.diffuse,
         reflectance.specular,
@@ -426,24 +439,4 @@ fn scatter(
     // A reflection that would leave through the surface (an interpolated normal
     // tilted past the true one) is absorbed.
     (geometric.dot(bounce.direction) > 0.0).then_some(bounce)
-}
-
-/// A direction about unit `normal` with density cos θ / π (Malley's method: a
-/// uniform point on the unit disc lifted to the hemisphere), for u, v in [0, 1).
-pub fn cosine_weighted(normal: DVec3, u: f64, v: f64) -> DVec3 {
-    let r = u.sqrt();
-    let phi = TAU * v;
-    let (t, b) = normal.any_orthonormal_pair();
-    let z = (1.0 - u).max(0.0).sqrt();
-    (t * (r * phi.cos()) + b * (r * phi.sin()) + normal * z).normalize()
-}
-
-/// A direction about unit `axis` with density (e + 1)/(2π) cosᵉ α, α from the
-/// axis, for u, v in [0, 1).
-pub fn phong_lobe(axis: DVec3, e: f64, u: f64, v: f64) -> DVec3 {
-    let cos = (1.0 - u).powf(1.0 / (e + 1.0));
-    let sin = (1.0 - cos * cos).max(0.0).sqrt();
-    let phi = TAU * v;
-    let (t, b) = axis.any_orthonormal_pair();
-    (t * (sin * phi.cos()) + b * (sin * phi.sin()) + axis * cos).normalize()
 }
