@@ -382,6 +382,9 @@ pub enum GlobalMethod {
     /// Kajiya 1986: the rendering equation by path tracing, one path a sample, the
     /// lights sampled at every vertex.
     PathTracing,
+    /// Jensen 1996: photons shot from the lights into a global and a caustic map,
+    /// read by a final gather and directly.
+    PhotonMap,
 }
 
 impl GlobalMethod {
@@ -389,7 +392,7 @@ impl GlobalMethod {
     /// methods do; ray tracing reads none).
     pub fn reads_radiosity(self) -> bool {
         match self {
-            GlobalMethod::RayTracing | GlobalMethod::PathTracing => false,
+            GlobalMethod::RayTracing | GlobalMethod::PathTracing | GlobalMethod::PhotonMap => false,
             GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance => true,
         }
     }
@@ -399,7 +402,7 @@ impl GlobalMethod {
     /// `render.supersample` must stay 1.
     pub fn antialiases_itself(self) -> bool {
         match self {
-            GlobalMethod::RayTracing | GlobalMethod::PathTracing => true,
+            GlobalMethod::RayTracing | GlobalMethod::PathTracing | GlobalMethod::PhotonMap => true,
             GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance => false,
         }
     }
@@ -408,7 +411,7 @@ impl GlobalMethod {
     /// methods' reflection frustum), so that a material's `gloss` is read.
     pub fn reads_gloss(self) -> bool {
         match self {
-            GlobalMethod::RayTracing | GlobalMethod::PathTracing => false,
+            GlobalMethod::RayTracing | GlobalMethod::PathTracing | GlobalMethod::PhotonMap => false,
             GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance => true,
         }
     }
@@ -420,6 +423,7 @@ impl GlobalMethod {
             GlobalMethod::TwoPass => "two-pass",
             GlobalMethod::RushmeierTorrance => "rushmeier-torrance",
             GlobalMethod::PathTracing => "path-tracing",
+            GlobalMethod::PhotonMap => "photon-map",
         }
     }
 }
@@ -469,8 +473,11 @@ pub struct GlobalSettings {
     /// Longest chain of reflected and refracted rays from the eye (the path
     /// tracer: the most bounces a path takes).
     pub depth: u32,
-    /// The path tracer: paths per pixel, n × n (stratified over the pixel).
+    /// The path tracer and the photon map: paths per pixel, n × n (stratified over
+    /// the pixel).
     pub samples: u32,
+    /// The photon map's photons and their estimates.
+    pub photons: PhotonSettings,
     /// A ray is not spawned when the product of the coefficients along its path
     /// falls below this (each band's largest).
     pub threshold: f64,
@@ -503,6 +510,20 @@ pub struct GlobalSettings {
     /// The keys the scene file set besides `method` (`global.depth`, ...): the
     /// renderer refuses those its integrator does not read.
     pub keys_set: Vec<&'static str>,
+}
+
+/// Jensen's photon maps (`[global] photons`, `caustic_photons`, `nearest`,
+/// `caustic_nearest`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhotonSettings {
+    /// Photons the global map holds.
+    pub global: u32,
+    /// Photons the caustic map holds.
+    pub caustic: u32,
+    /// Photons in the global map's radiance estimate (k).
+    pub nearest: u32,
+    /// Photons in the caustic map's radiance estimate.
+    pub caustic_nearest: u32,
 }
 
 /// The final gather over a radiosity solution (`[global.final_gather]`).

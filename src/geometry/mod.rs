@@ -6,6 +6,7 @@ pub mod central_projection;
 pub(crate) mod contour_sweep;
 pub mod convex;
 pub mod disc;
+pub mod kd_tree;
 pub mod lambert_contour;
 pub mod plane;
 pub mod polygon;

@@ -35,12 +35,55 @@
 //! term is kept ≥ 0.
 
 use super::final_gather::{FinalGather, Gathered};
-use super::traced_scene::Leaving;
+use super::traced_scene::{Leaving, TracedScene};
 use crate::geometry::bvh::Aabb;
 use crate::raster::View;
 use crate::scene::Scene;
+use crate::settings::FinalGatherSettings;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
+
+/// A final gather the cache can sweep: what it casts rays in, its settings, the
+/// scene's bounds, and the gather itself (at `position` on polygon `polygon`, unit
+/// `normal` on the side seen, its rays from stream `stream`).
+pub trait Gatherer: Sync {
+    fn traced(&self) -> &TracedScene;
+    fn settings(&self) -> FinalGatherSettings;
+    fn bounds(&self) -> Aabb;
+    fn gather(
+        &self,
+        scene: &Scene,
+        polygon: u32,
+        position: DVec3,
+        normal: DVec3,
+        stream: u64,
+    ) -> Gathered;
+}
+
+impl Gatherer for FinalGather {
+    fn traced(&self) -> &TracedScene {
+        FinalGather::traced(self)
+    }
+
+    fn settings(&self) -> FinalGatherSettings {
+        self.settings
+    }
+
+    fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    fn gather(
+        &self,
+        scene: &Scene,
+        polygon: u32,
+        position: DVec3,
+        normal: DVec3,
+        stream: u64,
+    ) -> Gathered {
+        FinalGather::gather(self, scene, polygon, position, normal, stream)
+    }
+}
 
 /// A gather kept for interpolation.
 #[derive(Clone, Debug)]
@@ -132,17 +175,16 @@ impl IrradianceCache {
 
     /// The cache of `gather` for `scene` seen by `view` (one sample per pixel):
     /// records made by a coarse-to-fine sweep of the pixel centres.
-    pub fn sweep(scene: &Scene, gather: &FinalGather, view: &View) -> IrradianceCache {
+    pub fn sweep(scene: &Scene, gather: &dyn Gatherer, view: &View) -> IrradianceCache {
         let traced = gather.traced();
-        let settings = gather.settings;
-        let mut cache = IrradianceCache::new(gather.bounds, settings.error, settings.gradients);
+        let settings = gather.settings();
+        let bounds = gather.bounds();
+        let mut cache = IrradianceCache::new(bounds, settings.error, settings.gradients);
         if settings.error <= 0.0 {
             return cache;
         }
-        let (lowest, highest) = (
-            settings.min_spacing * gather.scene_size(),
-            settings.max_spacing * gather.scene_size(),
-        );
+        let size = (bounds.max - bounds.min).length();
+        let (lowest, highest) = (settings.min_spacing * size, settings.max_spacing * size);
         let (width, height) = (view.width, view.height);
         let mut step = COARSEST.min(width.max(height).next_power_of_two());
         loop {

@@ -13,6 +13,9 @@
 //!   Heckbert 1992); `solution_radiance` reads the solution where rays land;
 //! - `path_tracing`: the rendering equation by path tracing (Kajiya 1986), the
 //!   ground truth the others are measured against;
+//! - `photon_map` and `photon_rendering`: Jensen's photon maps (1996), photons
+//!   shot from the lights into a balanced kd-tree, read by the final gather and,
+//!   for caustics, directly;
 //! - `reflection_frustum`: how the second pass gathers a glossy reflection
 //!   (Wallace, Cohen & Greenberg 1987).
 
@@ -20,6 +23,8 @@ pub mod final_gather;
 pub mod irradiance_cache;
 pub mod local;
 pub mod path_tracing;
+pub mod photon_map;
+pub mod photon_rendering;
 pub mod reflection_frustum;
 pub mod solution_radiance;
 pub mod traced_scene;

@@ -179,7 +179,9 @@ pub fn extension(scene: &Scene) -> Option<extended::Extension> {
     use crate::settings::{GlobalMethod, Mechanisms};
     let g = scene.global.as_ref()?;
     let follow = match g.method {
-        GlobalMethod::RayTracing | GlobalMethod::PathTracing => return None,
+        GlobalMethod::RayTracing | GlobalMethod::PathTracing | GlobalMethod::PhotonMap => {
+            return None;
+        }
         GlobalMethod::TwoPass => windows::Follow {
             mirrors: true,
             panes: false,

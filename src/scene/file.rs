@@ -179,6 +179,14 @@ pub struct GlobalFile {
     pub depth: Option<u32>,
     /// Absent: 4 (the path tracer's 4 x 4 paths a pixel).
     pub samples: Option<u32>,
+    /// Absent: 200,000 (the photon map's global map).
+    pub photons: Option<u32>,
+    /// Absent: 100,000 (the photon map's caustic map).
+    pub caustic_photons: Option<u32>,
+    /// Absent: 100 (photons in a global estimate).
+    pub nearest: Option<u32>,
+    /// Absent: 80 (photons in a caustic estimate).
+    pub caustic_nearest: Option<u32>,
     /// Absent: 10⁻³.
     pub threshold: Option<f64>,
     /// Absent: 2.
@@ -209,6 +217,10 @@ impl GlobalFile {
             method: _,
             depth,
             samples,
+            photons,
+            caustic_photons,
+            nearest,
+            caustic_nearest,
             threshold,
             subdivisions,
             contrast,
@@ -224,6 +236,10 @@ impl GlobalFile {
         [
             ("global.depth", depth.is_some()),
             ("global.samples", samples.is_some()),
+            ("global.photons", photons.is_some()),
+            ("global.caustic_photons", caustic_photons.is_some()),
+            ("global.nearest", nearest.is_some()),
+            ("global.caustic_nearest", caustic_nearest.is_some()),
             ("global.threshold", threshold.is_some()),
             ("global.subdivisions", subdivisions.is_some()),
             ("global.contrast", contrast.is_some()),

@@ -4,7 +4,9 @@ use super::file::{FinalGatherFile, GlobalFile, MechanismFile};
 use super::validate::colour;
 use crate::error::Result;
 use crate::error::ensure_valid;
-use crate::settings::{FinalGatherSettings, GlobalMethod, GlobalSettings as Settings, Mechanisms};
+use crate::settings::{
+    FinalGatherSettings, GlobalMethod, GlobalSettings as Settings, Mechanisms, PhotonSettings,
+};
 
 /// The longest ray tree `depth` allows: rays grow as 2^depth under glass.
 pub const MAX_DEPTH: u32 = 16;
@@ -25,6 +27,10 @@ pub const MAX_PATH_DEPTH: u32 = 1_000_000;
 const DEFAULT_PATH_SAMPLES: u32 = 4;
 /// 1024 x 1024 paths a pixel: a million, far beyond any converged image.
 pub const MAX_PATH_SAMPLES: u32 = 1024;
+/// Photons a map may hold: 50 million, about 3 GB.
+pub const MAX_PHOTONS: u32 = 50_000_000;
+/// Photons an estimate may read.
+pub const MAX_NEAREST: u32 = 10_000;
 /// A ray's least weight when the scene gives none.
 const DEFAULT_THRESHOLD: f64 = 1e-3;
 /// Whitted's subdivision levels when the scene gives none.
@@ -88,6 +94,34 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         "global.contrast must be a positive number, got {}",
         contrast
     );
+    let photons = PhotonSettings {
+        global: g.photons.unwrap_or(200_000),
+        caustic: g.caustic_photons.unwrap_or(100_000),
+        nearest: g.nearest.unwrap_or(100),
+        caustic_nearest: g.caustic_nearest.unwrap_or(80),
+    };
+    for (key, value) in [
+        ("global.photons", photons.global),
+        ("global.caustic_photons", photons.caustic),
+    ] {
+        ensure_valid!(
+            value <= MAX_PHOTONS,
+            key,
+            "{key} must be at most {MAX_PHOTONS} photons, got {}",
+            value
+        );
+    }
+    for (key, value) in [
+        ("global.nearest", photons.nearest),
+        ("global.caustic_nearest", photons.caustic_nearest),
+    ] {
+        ensure_valid!(
+            (1..=MAX_NEAREST).contains(&value),
+            key,
+            "{key} must be from 1 to {MAX_NEAREST} photons, got {}",
+            value
+        );
+    }
     let window_depth = g.window_depth.unwrap_or(DEFAULT_WINDOW_DEPTH);
     ensure_valid!(
         window_depth <= MAX_WINDOW_DEPTH,
@@ -115,9 +149,10 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         None => None,
         Some(f) => {
             ensure_valid!(
-                g.method.reads_radiosity() && g.exact_direct == Some(true),
+                g.method == GlobalMethod::PhotonMap
+                    || (g.method.reads_radiosity() && g.exact_direct == Some(true)),
                 "global.final_gather",
-                "global.final_gather gathers the indirect light from a radiosity solution beside the exact direct light: it needs a two-pass method and global.exact_direct = true"
+                "global.final_gather gathers the indirect light from a radiosity solution beside the exact direct light, or from a photon map: it needs a two-pass method and global.exact_direct = true, or method = \"photon-map\""
             );
             Some(final_gather(f)?)
         }
@@ -126,6 +161,7 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         method: g.method,
         depth,
         samples,
+        photons,
         threshold,
         subdivisions,
         contrast,
@@ -139,6 +175,13 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         final_gather,
         keys_set: g.keys_set(),
     })
+}
+
+/// The final gather's settings when `[global.final_gather]` gives none (the
+/// photon map always gathers).
+pub fn default_final_gather() -> FinalGatherSettings {
+    let defaults: FinalGatherFile = toml::from_str("").expect("every key has a default");
+    final_gather(&defaults).expect("the defaults are valid")
 }
 
 fn final_gather(f: &FinalGatherFile) -> Result<FinalGatherSettings> {

@@ -18,8 +18,9 @@
 //! tracing", SIGGRAPH '84): see `Light::sample`.
 
 use crate::geometry::polygon::{area, centroid, triangulate};
+use crate::geometry::sampling::{cosine_weighted, uniform_cone};
 use glam::{DVec2, DVec3, Vec3};
-use std::f64::consts::PI;
+use std::f64::consts::{PI, TAU};
 
 /// An isotropic point light with inverse-square falloff.
 #[derive(Clone, Debug)]
@@ -450,6 +451,84 @@ impl Light {
             }
             Light::Sphere(l) => {
                 sphere_sample(l.centre, l.radius, from, u).and_then(|(p, w)| at(p, w))
+            }
+        }
+    }
+}
+
+/// A photon leaving a light: where, which way, and its power's estimator.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Emitted {
+    pub origin: DVec3,
+    /// Unit direction of travel.
+    pub direction: DVec3,
+    /// Emitted radiance times cos θ over the density of (origin, direction): its
+    /// mean over uniform `u` is the light's power, so N photons of power
+    /// `weight / N` carry it.
+    pub weight: Vec3,
+}
+
+impl Light {
+    /// The power the light sends into a scene bounded by the sphere (`centre`,
+    /// `radius`), per band: π A L (a polygon, one-sided), 4π² r² L (a sphere),
+    /// 4π I (a point), I times the cone's solid angle (a spot: the most its
+    /// distribution sends), E π R² (a distant light, over the scene's disc).
+    pub fn power(&self, radius: f64) -> Vec3 {
+        let solid = |cos_alpha: f64| TAU * (1.0 - cos_alpha);
+        match self {
+            Light::Polygon(l) => l.radiance * (PI * l.area) as f32,
+            Light::Sphere(l) => l.radiance * (4.0 * PI * PI * l.radius * l.radius) as f32,
+            Light::Point(l) => l.intensity * (4.0 * PI) as f32,
+            Light::Spot(l) => l.intensity * solid(l.cone_angle.cos()) as f32,
+            Light::Distant(l) => l.irradiance * (PI * radius * radius) as f32,
+        }
+    }
+
+    /// One photon from the light into a scene bounded by the sphere (`centre`,
+    /// `radius`), for `u` uniform in [0, 1)⁴: a point uniform over an emitter's
+    /// area and a direction by the cosine about its normal; a point light's
+    /// direction uniform over the sphere, a spot's over its cone (weighted by its
+    /// distribution); a distant light's photons uniform over the disc across the
+    /// scene, entering along its direction. `None`: a spot's direction outside
+    /// its distribution.
+    pub fn emit(&self, centre: DVec3, radius: f64, u: [f64; 4]) -> Option<Emitted> {
+        let emitted = |origin: DVec3, direction: DVec3, weight: Vec3| {
+            (weight.max_element() > 0.0).then_some(Emitted {
+                origin,
+                direction,
+                weight,
+            })
+        };
+        match self {
+            Light::Polygon(l) => {
+                let origin = l.point_at(DVec2::new(u[0], u[1]));
+                let direction = cosine_weighted(l.normal, u[2], u[3]);
+                emitted(origin, direction, self.power(radius))
+            }
+            Light::Sphere(l) => {
+                let normal = uniform_cone(DVec3::Z, -1.0, u[0], u[1]);
+                let origin = l.centre + normal * l.radius;
+                let direction = cosine_weighted(normal, u[2], u[3]);
+                emitted(origin, direction, self.power(radius))
+            }
+            Light::Point(l) => {
+                let direction = uniform_cone(DVec3::Z, -1.0, u[2], u[3]);
+                emitted(l.position, direction, self.power(radius))
+            }
+            Light::Spot(l) => {
+                let direction = uniform_cone(l.axis, l.cone_angle.cos(), u[2], u[3]);
+                let factor = l.factor(direction.dot(l.axis).clamp(-1.0, 1.0).acos());
+                emitted(l.position, direction, self.power(radius) * factor as f32)
+            }
+            Light::Distant(l) => {
+                // A point uniform on the disc of radius R across the light's
+                // travel, beyond the scene's sphere.
+                let (a, b) = l.direction.any_orthonormal_pair();
+                let r = radius * u[0].sqrt();
+                let phi = TAU * u[1];
+                let origin =
+                    centre - l.direction * (2.0 * radius) + (a * phi.cos() + b * phi.sin()) * r;
+                emitted(origin, l.direction, self.power(radius))
             }
         }
     }

@@ -29,8 +29,8 @@ pub use validate::MAX_SIDE;
 
 pub use build::scene_from_table;
 pub use lights::{
-    DistantLight, Light, LightKind, LightSample, PointLight, PolygonLight, Reach, SphereLight,
-    SpotDistribution, SpotLight,
+    DistantLight, Emitted, Light, LightKind, LightSample, PointLight, PolygonLight, Reach,
+    SphereLight, SpotDistribution, SpotLight,
 };
 
 use crate::texture::environment::EnvironmentMap;

@@ -18,6 +18,7 @@
 
 mod direct;
 mod path_tracing;
+mod photon_map;
 mod radiosity;
 mod ray_tracing;
 mod rushmeier_torrance;
@@ -61,16 +62,19 @@ pub enum Integrator {
     RayTracing,
     /// Kajiya 1986: the rendering equation by path tracing.
     PathTracing,
+    /// Jensen 1996: photon maps read by a final gather and directly.
+    PhotonMap,
 }
 
 /// Every integrator, in the order lists show them.
-pub const INTEGRATORS: [Integrator; 6] = [
+pub const INTEGRATORS: [Integrator; 7] = [
     Integrator::Direct,
     Integrator::Radiosity,
     Integrator::TwoPass,
     Integrator::RushmeierTorrance,
     Integrator::RayTracing,
     Integrator::PathTracing,
+    Integrator::PhotonMap,
 ];
 
 /// The registry: what `integrator` declares of itself.
@@ -82,6 +86,7 @@ pub fn declaration(integrator: Integrator) -> &'static Declaration {
         Integrator::RushmeierTorrance => &rushmeier_torrance::DECLARATION,
         Integrator::RayTracing => &ray_tracing::DECLARATION,
         Integrator::PathTracing => &path_tracing::DECLARATION,
+        Integrator::PhotonMap => &photon_map::DECLARATION,
     }
 }
 
@@ -95,6 +100,7 @@ impl Integrator {
                 GlobalMethod::TwoPass => Integrator::TwoPass,
                 GlobalMethod::RushmeierTorrance => Integrator::RushmeierTorrance,
                 GlobalMethod::PathTracing => Integrator::PathTracing,
+                GlobalMethod::PhotonMap => Integrator::PhotonMap,
             },
             (None, Some(_)) => Integrator::Radiosity,
             (None, None) => Integrator::Direct,

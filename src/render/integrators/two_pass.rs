@@ -137,7 +137,7 @@ impl KeptTwoPass {
         }
         let camera = &scene.camera;
         let view = View::new(camera, camera.width, camera.height);
-        let cache = IrradianceCache::sweep(scene, &gather, &view);
+        let cache = IrradianceCache::sweep(scene, gather.as_ref(), &view);
         self.swept.fetch_add(1, Ordering::Relaxed);
         let made = Arc::new(ViewGather { gather, cache });
         *slot = Some((camera.clone(), samples, made.clone()));

@@ -4,6 +4,7 @@
 mod final_gather;
 mod mitsuba;
 mod path_tracing;
+mod photon_map;
 mod ray_tracing;
 mod reflection_frustum;
 mod two_pass;

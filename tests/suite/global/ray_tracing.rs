@@ -1258,9 +1258,9 @@ fn bad_ray_tracing_settings_are_one_error_line_naming_the_key() {
             "materials.glass.ior must be a positive number",
         ),
         (
-            scene("method = \"path-tracing\"", "1.5"),
+            scene("method = \"metropolis\"", "1.5"),
             vec![],
-            "global.method: unknown variant `path-tracing`",
+            "global.method: unknown variant `metropolis`",
         ),
     ] {
         let dir = tempfile::tempdir().unwrap();

@@ -17,15 +17,20 @@ fn listed_at(integrator: Integrator) -> usize {
         Integrator::RushmeierTorrance => 3,
         Integrator::RayTracing => 4,
         Integrator::PathTracing => 5,
+        Integrator::PhotonMap => 6,
     }
 }
 
 /// Every scene key an integrator may read, with a valid value to set it to (as
 /// `--set` writes it), apart from the registry.
-const KEYS: [(&str, &str); 14] = [
+const KEYS: [(&str, &str); 18] = [
     ("radiosity", "radiosity.solver=\"gathering\""),
     ("global.depth", "global.depth=3"),
     ("global.samples", "global.samples=2"),
+    ("global.photons", "global.photons=1000"),
+    ("global.caustic_photons", "global.caustic_photons=1000"),
+    ("global.nearest", "global.nearest=10"),
+    ("global.caustic_nearest", "global.caustic_nearest=10"),
     ("global.threshold", "global.threshold=0.01"),
     ("global.subdivisions", "global.subdivisions=1"),
     ("global.contrast", "global.contrast=0.1"),
@@ -46,7 +51,8 @@ const KEYS: [(&str, &str); 14] = [
 /// tree, antialiasing, weights, spheres and ambient term; the two-pass methods the
 /// radiosity solution, the ray tree of pass 2, mirror windows, the reflection
 /// frustum, the mechanisms, exact direct light and the final gather; Kajiya's path
-/// tracer its paths' depth, their number and the spheres.
+/// tracer its paths' depth, their number and the spheres; Jensen's photon map
+/// those, its two maps' photons and estimates, and its final gather.
 fn papers_keys(integrator: Integrator) -> Vec<&'static str> {
     let two_pass = vec![
         "radiosity",
@@ -74,6 +80,16 @@ fn papers_keys(integrator: Integrator) -> Vec<&'static str> {
         Integrator::PathTracing => {
             vec!["global.depth", "global.samples", "global.analytic_spheres"]
         }
+        Integrator::PhotonMap => vec![
+            "global.depth",
+            "global.samples",
+            "global.analytic_spheres",
+            "global.photons",
+            "global.caustic_photons",
+            "global.nearest",
+            "global.caustic_nearest",
+            "global.final_gather",
+        ],
     }
 }
 
@@ -86,6 +102,7 @@ fn entry(integrator: Integrator, sets: &[&str]) -> lumiere::Result<Scene> {
         Integrator::RushmeierTorrance => "rushmeier-torrance",
         Integrator::RayTracing => "ray-tracing",
         Integrator::PathTracing => "path-tracing",
+        Integrator::PhotonMap => "photon-map",
     };
     let mut all = vec!["camera.width=8".to_string(), "camera.height=6".to_string()];
     all.extend(sets.iter().map(|s| s.to_string()));
@@ -120,8 +137,8 @@ fn the_registry_lists_every_integrator_once_and_the_scene_file_chooses_it_by_nam
         chosen += 1;
     }
     assert_eq!(
-        chosen, 4,
-        "ray tracing, the two two-pass methods and path tracing"
+        chosen, 5,
+        "ray tracing, the two two-pass methods, path tracing and the photon map"
     );
 }
 
@@ -156,13 +173,14 @@ fn each_integrator_chosen_by_global_method_accepts_exactly_the_keys_it_declares(
         Integrator::RushmeierTorrance,
         Integrator::RayTracing,
         Integrator::PathTracing,
+        Integrator::PhotonMap,
     ] {
         let declared = declaration(integrator);
         accepted(integrator, &[]).unwrap();
         for (key, set) in KEYS {
-            // The final gather reads the solution beside the exact direct light.
+            // The final gather reads a solution beside the exact direct light.
             let mut sets = vec![set];
-            if key == "global.final_gather" {
+            if key == "global.final_gather" && declared.keys.contains(&"global.exact_direct") {
                 sets.push("global.exact_direct=true");
             }
             let outcome = accepted(integrator, &sets);
