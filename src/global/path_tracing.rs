@@ -47,7 +47,7 @@
 //!   as Whitted's rays do.
 
 use super::local::{background, reflectance_at};
-use super::traced_scene::{Leaving, SurfaceHit, TracedScene};
+use super::traced_scene::{Facing, Leaving, SurfaceHit, TracedScene};
 use super::whitted::{reflected_direction, refracted_direction};
 use crate::geometry::sampling::{Stream, cosine_weighted, phong_lobe};
 use crate::image_io::Image;
@@ -172,16 +172,12 @@ impl<'a> PathTracer<'a> {
             };
             vertices += 1;
             let material = &self.scene.materials[hit.material];
-            let front = direction.dot(hit.geometric_normal) < 0.0;
-            // The normals on the side the ray comes from; an interpolated normal
-            // facing away from the ray (near a smooth mesh's silhouette) gives way
-            // to the geometric one, as in Whitted's tracer.
-            let side = if front { 1.0 } else { -1.0 };
-            let geometric = hit.geometric_normal * side;
-            let normal = match hit.normal * side {
-                n if n.dot(direction) < 0.0 => n,
-                _ => geometric,
-            };
+            let facing = hit.facing(direction);
+            let Facing {
+                front,
+                normal,
+                geometric,
+            } = facing;
             if front && counts_emission {
                 radiance += throughput * material.emission;
             }
@@ -192,15 +188,7 @@ impl<'a> PathTracer<'a> {
             if vertices >= self.depth {
                 break;
             }
-            let Some(bounce) = scatter(
-                material,
-                &reflectance,
-                normal,
-                geometric,
-                direction,
-                front,
-                stream,
-            ) else {
+            let Some(bounce) = scatter(material, &reflectance, &facing, direction, stream) else {
                 break;
             };
             throughput *= bounce.weight;
@@ -362,16 +350,19 @@ fn emission(light: &Light) -> Vec3 {
 /// Kajiya's importance choice at a vertex: the kind of reflection drawn in
 /// proportion to its reflectance (each kind's largest band), the rest of the unit
 /// interval absorbing the path (`None`), then its direction. `direction` is the
-/// incoming ray's, `front` whether it meets the surface from outside.
+/// incoming ray's, `facing` how it meets the surface.
 pub(crate) fn scatter(
     material: &Material,
     reflectance: &Reflectance,
-    normal: DVec3,
-    geometric: DVec3,
+    facing: &Facing,
     direction: DVec3,
-    front: bool,
     stream: &mut Stream,
 ) -> Option<Bounce> {
+    let &Facing {
+        front,
+        normal,
+        geometric,
+    } = facing;
     let (mirror, transmitted, eta1, eta2) =
         specular_coefficients(material, normal, direction, front);
     let kinds = [

@@ -245,13 +245,7 @@ fn trace_photon(
             break;
         };
         let material = &scene.materials[hit.material];
-        let front = direction.dot(hit.geometric_normal) < 0.0;
-        let side = if front { 1.0 } else { -1.0 };
-        let geometric = hit.geometric_normal * side;
-        let normal = match hit.normal * side {
-            n if n.dot(direction) < 0.0 => n,
-            _ => geometric,
-        };
+        let facing = hit.facing(direction);
         let reflectance = reflectance_at(scene, &hit, -direction);
         if reflectance.diffuse.max_element() > 0.0 {
             let photon = Photon { direction, power };
@@ -265,15 +259,7 @@ fn trace_photon(
                 }
             }
         }
-        let Some(next) = scatter(
-            material,
-            &reflectance,
-            normal,
-            geometric,
-            direction,
-            front,
-            stream,
-        ) else {
+        let Some(next) = scatter(material, &reflectance, &facing, direction, stream) else {
             break;
         };
         specular_only &= next.specular;

@@ -174,16 +174,10 @@ impl Gatherer for PhotonGather<'_> {
 }
 
 /// Whether a ray along `direction` meets `hit` from outside, and the shading
-/// normal on the side it comes from (the geometric one where the interpolated
-/// normal faces away, as in Whitted's tracer).
+/// normal on the side it comes from.
 fn facing(hit: &SurfaceHit, direction: DVec3) -> (bool, DVec3) {
-    let front = direction.dot(hit.geometric_normal) < 0.0;
-    let side = if front { 1.0 } else { -1.0 };
-    let normal = match hit.normal * side {
-        n if n.dot(direction) < 0.0 => n,
-        _ => hit.geometric_normal * side,
-    };
-    (front, normal)
+    let facing = hit.facing(direction);
+    (facing.front, facing.normal)
 }
 
 /// The mirror and transmitted rays from a surface, with their weights (none where

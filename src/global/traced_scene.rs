@@ -35,7 +35,36 @@ pub enum Leaving {
     Sphere(usize),
 }
 
+/// A surface as a ray meets it: from outside (its front) or inside, and its
+/// normals on the side the ray comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Facing {
+    pub front: bool,
+    /// The shading normal, or the geometric one where the interpolated normal faces
+    /// away from the ray (near a smooth mesh's silhouette, where the mirror and
+    /// Snell laws would break).
+    pub normal: DVec3,
+    /// The surface's own normal.
+    pub geometric: DVec3,
+}
+
 impl SurfaceHit {
+    /// How a ray along `direction` meets this surface.
+    pub fn facing(&self, direction: DVec3) -> Facing {
+        let front = direction.dot(self.geometric_normal) < 0.0;
+        let side = if front { 1.0 } else { -1.0 };
+        let geometric = self.geometric_normal * side;
+        let normal = match self.normal * side {
+            n if n.dot(direction) < 0.0 => n,
+            _ => geometric,
+        };
+        Facing {
+            front,
+            normal,
+            geometric,
+        }
+    }
+
     pub fn leaving(&self) -> Leaving {
         match self.polygon {
             Some(p) => Leaving::Polygon(p),

@@ -158,16 +158,10 @@ impl<'a> Whitted<'a> {
         stream: u64,
     ) -> Traced {
         let material = &self.scene.materials[hit.material];
-        // Normals on the side the ray comes from.
-        let front = direction.dot(hit.geometric_normal) < 0.0;
-        let side = if front { 1.0 } else { -1.0 };
-        // An interpolated normal can face away from the ray near a smooth mesh's
-        // silhouette, where Whitted's V' = V/|V·N| would break the mirror and Snell
-        // laws: the geometric normal is taken there.
-        let n = match hit.normal * side {
-            n if n.dot(direction) < 0.0 => n,
-            _ => hit.geometric_normal * side,
-        };
+        // Normals on the side the ray comes from (the geometric one where an
+        // interpolated normal faces away, which would break Whitted's V' = V/|V·N|).
+        let facing = hit.facing(direction);
+        let (front, n) = (facing.front, facing.normal);
         let to_eye = -direction;
         let reflectance = reflectance_at(self.scene, hit, to_eye);
         let mut radiance = self.settings.ambient * reflectance.diffuse;

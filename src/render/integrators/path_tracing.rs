@@ -3,13 +3,12 @@
 //! pixel instead of the scan-line pass. Chosen by `[global] method =
 //! "path-tracing"`; the ground truth the other global methods are measured against.
 
-use super::ray_tracing::{KeptTracedScene, no_light, refuse_shadow_method};
+use super::ray_tracing::{KeptTracedScene, RayFrame, no_light, ray_frame, refuse_shadow_method};
 use super::{BufferInfo, Declaration, EnvironmentMaps, Frame, Integrator, OwnFrame, Role};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::global::TracedScene;
 use crate::global::path_tracing::PathTracer;
 use crate::image_io::{Buffer, BufferData};
-use crate::raster::View;
 use crate::scene::Scene;
 use crate::settings::GlobalMethod;
 use std::sync::Arc;
@@ -51,23 +50,11 @@ impl OwnFrame for Paths {
         environments: &EnvironmentMaps,
         wanted: &[String],
     ) -> Result<Frame> {
-        if let Some(name) = wanted.iter().find(|w| BUFFERS.iter().all(|b| b.0 != *w)) {
-            return Err(Error::UnknownBuffer {
-                name: name.clone(),
-                known: BUFFERS.iter().map(|b| b.0.to_string()).collect(),
-            });
-        }
-        let Some(settings) = &scene.global else {
-            return Err(Error::invalid(
-                "global.method",
-                "path tracing reads its settings from [global]",
-            ));
-        };
-        let backdrop = scene
-            .render
-            .backdrop
-            .and_then(|b| environments.get(b).cloned().flatten());
-        let view = View::new(&scene.camera, scene.camera.width, scene.camera.height);
+        let RayFrame {
+            settings,
+            backdrop,
+            view,
+        } = ray_frame(scene, environments, wanted, &[BUFFERS[0].0, BUFFERS[1].0])?;
         let tracer = PathTracer::new(scene, &self.traced, settings, backdrop.as_deref());
         let frame = tracer.render(&view);
         let (width, height) = (frame.image.width, frame.image.height);

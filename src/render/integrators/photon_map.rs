@@ -3,7 +3,7 @@
 //! into a global and a caustic map, kept while the lights stay; pass 2 makes its
 //! frame with rays from the eye. Chosen by `[global] method = "photon-map"`.
 
-use super::ray_tracing::{no_light, refuse_shadow_method};
+use super::ray_tracing::{RayFrame, no_light, ray_frame, refuse_shadow_method};
 use super::{
     BufferInfo, Declaration, EnvironmentMaps, Frame, Integrator, Kept, Lighting, OwnFrame,
     ReadsSolution, Role,
@@ -13,7 +13,6 @@ use crate::global::TracedScene;
 use crate::global::photon_map::{MapKind, shoot};
 use crate::global::photon_rendering::{PhotonMaps, PhotonRenderer};
 use crate::image_io::{Buffer, BufferData};
-use crate::raster::View;
 use crate::scene::Scene;
 use crate::scene::global_settings::default_final_gather;
 use crate::settings::GlobalMethod;
@@ -130,23 +129,11 @@ impl OwnFrame for Photons {
         environments: &EnvironmentMaps,
         wanted: &[String],
     ) -> Result<Frame> {
-        if let Some(name) = wanted.iter().find(|w| *w != PHOTONS.0) {
-            return Err(Error::UnknownBuffer {
-                name: name.clone(),
-                known: vec![PHOTONS.0.to_string()],
-            });
-        }
-        let Some(settings) = &scene.global else {
-            return Err(Error::invalid(
-                "global.method",
-                "the photon map reads its settings from [global]",
-            ));
-        };
-        let backdrop = scene
-            .render
-            .backdrop
-            .and_then(|b| environments.get(b).cloned().flatten());
-        let view = View::new(&scene.camera, scene.camera.width, scene.camera.height);
+        let RayFrame {
+            settings,
+            backdrop,
+            view,
+        } = ray_frame(scene, environments, wanted, &[PHOTONS.0])?;
         let gather = settings.final_gather.unwrap_or_else(default_final_gather);
         let renderer = PhotonRenderer::new(
             scene,

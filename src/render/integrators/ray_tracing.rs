@@ -13,8 +13,9 @@ use crate::global::whitted::Whitted;
 use crate::image_io::{Buffer, BufferData};
 use crate::raster::View;
 use crate::scene::Scene;
-use crate::settings::GlobalMethod;
 use crate::settings::ShadowMethod;
+use crate::settings::{GlobalMethod, GlobalSettings};
+use crate::texture::environment::EnvironmentMap;
 use std::sync::{Arc, Mutex};
 
 /// The buffer a ray-traced frame gives, and what it holds.
@@ -69,6 +70,44 @@ pub(super) fn refuse_shadow_method(scene: &Scene) -> Result<()> {
     ))
 }
 
+/// What a frame made by rays starts from: its `[global]` settings, the backdrop
+/// its escaping rays see, and the view.
+pub(super) struct RayFrame<'a> {
+    pub settings: &'a GlobalSettings,
+    pub backdrop: Option<Arc<EnvironmentMap>>,
+    pub view: View,
+}
+
+/// The start of a frame made by rays, once the buffers `wanted` are found among
+/// those it `makes`.
+pub(super) fn ray_frame<'a>(
+    scene: &'a Scene,
+    environments: &EnvironmentMaps,
+    wanted: &[String],
+    makes: &[&str],
+) -> Result<RayFrame<'a>> {
+    if let Some(name) = wanted.iter().find(|w| !makes.contains(&w.as_str())) {
+        return Err(Error::UnknownBuffer {
+            name: name.clone(),
+            known: makes.iter().map(|m| m.to_string()).collect(),
+        });
+    }
+    let Some(settings) = &scene.global else {
+        return Err(Error::invalid(
+            "global.method",
+            "a frame made by rays reads its settings from [global]",
+        ));
+    };
+    Ok(RayFrame {
+        settings,
+        backdrop: scene
+            .render
+            .backdrop
+            .and_then(|b| environments.get(b).cloned().flatten()),
+        view: View::new(&scene.camera, scene.camera.width, scene.camera.height),
+    })
+}
+
 /// The scene as rays see it, built once (geometry never changes), and the frame
 /// maker over it.
 pub(super) struct KeptTracedScene {
@@ -115,23 +154,11 @@ impl OwnFrame for Tracer {
         environments: &EnvironmentMaps,
         wanted: &[String],
     ) -> Result<Frame> {
-        if let Some(name) = wanted.iter().find(|w| *w != RAYS.0) {
-            return Err(Error::UnknownBuffer {
-                name: name.clone(),
-                known: vec![RAYS.0.to_string()],
-            });
-        }
-        let Some(settings) = &scene.global else {
-            return Err(Error::invalid(
-                "global.method",
-                "ray tracing reads its settings from [global]",
-            ));
-        };
-        let backdrop = scene
-            .render
-            .backdrop
-            .and_then(|b| environments.get(b).cloned().flatten());
-        let view = View::new(&scene.camera, scene.camera.width, scene.camera.height);
+        let RayFrame {
+            settings,
+            backdrop,
+            view,
+        } = ray_frame(scene, environments, wanted, &[RAYS.0])?;
         let tracer = Whitted::new(scene, &self.traced, settings, backdrop.as_deref());
         let (image, rays) = tracer.render(&view);
         let buffers = if wanted.is_empty() {
