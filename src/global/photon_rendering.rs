@@ -27,7 +27,7 @@ use super::irradiance_cache::{Gatherer, IrradianceCache};
 use super::local::{background, lights_at, reflectance_at};
 use super::path_tracing::specular_coefficients;
 use super::photon_map::PhotonMap;
-use super::traced_scene::{Leaving, SurfaceHit, TracedScene};
+use super::traced_scene::{Facing, Leaving, SurfaceHit, TracedScene};
 use super::whitted::{reflected_direction, refracted_direction};
 use crate::geometry::bvh::Aabb;
 use crate::geometry::sampling::Stream;
@@ -114,7 +114,7 @@ impl<'a> PhotonGather<'a> {
         let (mut hit, mut direction) = (*hit, direction);
         for depth in 1.. {
             let material = &self.scene.materials[hit.material];
-            let (front, normal) = facing(&hit, direction);
+            let Facing { front, normal, .. } = hit.facing(direction);
             let reflectance = reflectance_at(self.scene, &hit, -direction);
             if reflectance.diffuse.max_element() > 0.0 {
                 radiance += weight * reflectance.diffuse / PI
@@ -171,13 +171,6 @@ impl Gatherer for PhotonGather<'_> {
     ) -> Gathered {
         self.gather_from(position, normal, Leaving::Polygon(polygon), stream)
     }
-}
-
-/// Whether a ray along `direction` meets `hit` from outside, and the shading
-/// normal on the side it comes from.
-fn facing(hit: &SurfaceHit, direction: DVec3) -> (bool, DVec3) {
-    let facing = hit.facing(direction);
-    (facing.front, facing.normal)
 }
 
 /// The mirror and transmitted rays from a surface, with their weights (none where
@@ -254,11 +247,6 @@ impl<'a> PhotonRenderer<'a> {
         }
     }
 
-    /// The records the cache holds.
-    pub fn records(&self) -> usize {
-        self.cache.records.len()
-    }
-
     /// The radiance along the ray from `origin` (leaving `leaving`), `depth`
     /// specular bounces from the eye; `index` numbers the point for its streams.
     fn radiance(
@@ -276,7 +264,7 @@ impl<'a> PhotonRenderer<'a> {
             return background(self.scene, self.backdrop, direction);
         };
         let material = &self.scene.materials[hit.material];
-        let (front, normal) = facing(&hit, direction);
+        let Facing { front, normal, .. } = hit.facing(direction);
         let to_eye = -direction;
         let reflectance = reflectance_at(self.scene, &hit, to_eye);
         let mut radiance = if front { material.emission } else { Vec3::ZERO };
@@ -327,7 +315,7 @@ impl<'a> PhotonRenderer<'a> {
         else {
             return Vec3::ZERO;
         };
-        let (_, normal) = facing(&hit, direction);
+        let normal = hit.facing(direction).normal;
         let reflectance = reflectance_at(self.scene, &hit, -direction);
         reflectance.diffuse / PI
             * self
