@@ -3,7 +3,7 @@
 //! sampling against the densities it claims, and against Mitsuba 3's path tracer by
 //! the per-pixel statistical test, which tells bias from noise.
 
-use crate::support::{self, camera, polygon, scene_from_text};
+use crate::support::{self, camera, polygon, scene_from_text, unit_cube_walls};
 use glam::{DVec3, Vec3};
 use lumiere::geometry::sampling::{cosine_weighted, phong_lobe};
 use lumiere::image_io::{self, BufferData, Candidate, Moments, statistical_test};
@@ -26,26 +26,18 @@ enum Seen {
     Face,
 }
 
-/// A closed cube, [-1, 1]³, every wall of albedo `RHO` emitting `E` inwards, seen
+/// A closed cube, [0, 1]³, every wall of albedo `RHO` emitting `E` inwards, seen
 /// from its centre with n x n paths a pixel, `extra` lines added to `[global]`.
 fn furnace(seen: Seen, size: u32, n: u32, extra: &str) -> Renderer {
     let mut text = match seen {
-        Seen::Whole => camera([0.0, 0.0, 0.0], [0.2, 0.1, 1.0], 70.0, size, size),
-        Seen::Face => camera([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 20.0, size, size),
+        Seen::Whole => camera([0.5, 0.5, 0.5], [0.6, 0.55, 1.0], 70.0, size, size),
+        Seen::Face => camera([0.5, 0.5, 0.5], [0.5, 0.5, 1.0], 20.0, size, size),
     };
     text += &format!(
         "[shadows]\nmethod = \"none\"\n\n[global]\nmethod = \"path-tracing\"\nsamples = {n}\n{extra}\n\n\
          [materials.wall]\ndiffuse = [{RHO}, {RHO}, {RHO}]\nemission = [{E}, {E}, {E}]\n\n"
     );
-    for axis in [DVec3::X, DVec3::Y, DVec3::Z] {
-        let u = axis.any_orthonormal_vector();
-        let v = axis.cross(u);
-        for side in [-1.0, 1.0] {
-            let c = axis * side;
-            let corners = [c - u - v, c + u - v, c + u + v, c - u + v];
-            text += &polygon("wall", "wall", corners, -axis * side);
-        }
-    }
+    text += &unit_cube_walls("wall");
     Renderer::new(scene_from_text(&text, &[]))
 }
 

@@ -4,7 +4,7 @@
 //! mirror, with the cone filter), and the power the photons carry against the
 //! light's.
 
-use crate::support::{camera, polygon, scene_from_text};
+use crate::support::{camera, polygon, scene_from_text, unit_cube_walls};
 use glam::DVec3;
 use lumiere::geometry::kd_tree::{KdTree, Neighbour};
 use lumiere::global::TracedScene;
@@ -163,24 +163,12 @@ fn the_caustic_of_a_mirror_is_the_lamps_image() {
 #[test]
 fn the_photons_carry_the_lights_power() {
     let rho = 0.5;
-    let mut text = camera([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], 40.0, 8, 8);
+    let mut text = camera([0.5, 0.5, 0.5], [0.5, 0.5, 1.0], 40.0, 8, 8);
     text += &format!(
         "[global]\nmethod = \"photon-map\"\n\n[materials.wall]\ndiffuse = [{rho}, {rho}, {rho}]\n\n\
-         [[lights]]\ntype = \"point\"\nposition = [0.1, 0.2, 0.3]\nintensity = [1.0, 1.0, 1.0]\n\n"
+         [[lights]]\ntype = \"point\"\nposition = [0.55, 0.6, 0.65]\nintensity = [1.0, 1.0, 1.0]\n\n"
     );
-    for axis in [DVec3::X, DVec3::Y, DVec3::Z] {
-        let u = axis.any_orthonormal_vector();
-        let v = axis.cross(u);
-        for side in [-1.0, 1.0] {
-            let c = axis * side;
-            text += &polygon(
-                "wall",
-                "wall",
-                [c - u - v, c + u - v, c + u + v, c - u + v],
-                -axis * side,
-            );
-        }
-    }
+    text += &unit_cube_walls("wall");
     let scene = scene_from_text(&text, &[]);
     let traced = TracedScene::new(&scene, true);
     let map = shoot(&scene, &traced, MapKind::Global, 200_000, 4);
