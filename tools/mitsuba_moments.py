@@ -14,6 +14,14 @@ printed line. Held in tests/references/ for the path tracer's tests:
     python3 tools/mitsuba_moments.py path-tracing-mirrors --size 128 --renders 32 \\
         --spp 1024 --out tests/references/path-tracing-mirrors-mitsuba
 
+With --xml, it renders a scene file as it is (a reference suite's export, whose
+size it keeps) and writes OUT.pfm and OUT.variance.pfm: the candidate and its
+variance `lumiere check --physically-based --candidate-renders N` reads
+(docs/testing-your-renderer.md):
+
+    python3 tools/mitsuba_moments.py --xml suite/ID/export/scene.xml --renders 8 \\
+        --spp 64 --out mitsuba/ID
+
 Needs target/release/lumiere (`cargo build --release`) and Mitsuba with numpy
 (tools/install-peers.sh). The llvm variants load Debian's libLLVM-19 (found as in
 bench/peers.py); --variant scalar_rgb needs none.
@@ -43,7 +51,8 @@ def write_pfm(path, image):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("entry")
+    parser.add_argument("entry", nargs="?", help="a catalogue id, exported at --size")
+    parser.add_argument("--xml", help="a Mitsuba scene file rendered as it is (instead of an entry)")
     parser.add_argument("--size", type=int, default=128)
     parser.add_argument("--renders", type=int, default=32)
     parser.add_argument("--spp", type=int, default=1024)
@@ -52,6 +61,8 @@ def main():
     args = parser.parse_args()
     if args.renders < 2:
         sys.exit("--renders: at least 2 (a variance needs two renders)")
+    if (args.entry is None) == (args.xml is None):
+        sys.exit("name a catalogue entry or --xml SCENE, one of the two")
     if args.variant.startswith("llvm") and "DRJIT_LIBLLVM_PATH" not in os.environ:
         os.environ["DRJIT_LIBLLVM_PATH"] = peers.libllvm()
     import mitsuba as mi
@@ -60,13 +71,16 @@ def main():
     mi.set_variant(args.variant)
     lumiere = os.path.join(ROOT, "target", "release", "lumiere")
     with tempfile.TemporaryDirectory() as work:
-        xml = os.path.join(work, "scene.xml")
-        size = str(args.size)
-        subprocess.run(
-            [lumiere, "export", args.entry, "--format", "mitsuba", "--width", size,
-             "--height", size, "-o", xml],
-            check=True,
-        )
+        if args.xml:
+            xml = args.xml
+        else:
+            xml = os.path.join(work, "scene.xml")
+            size = str(args.size)
+            subprocess.run(
+                [lumiere, "export", args.entry, "--format", "mitsuba", "--width", size,
+                 "--height", size, "-o", xml],
+                check=True,
+            )
         scene = mi.load_file(xml)
         # Welford's update in double precision.
         mean = squares = None
@@ -79,10 +93,16 @@ def main():
             squares += delta * (image - mean)
             print(f"render {k + 1}/{args.renders}", file=sys.stderr)
     variance = squares / (args.renders - 1)
-    write_pfm(args.out + "-mean.pfm", mean)
-    write_pfm(args.out + "-variance.pfm", variance)
-    print(f"{args.entry}: {args.renders} renders x {args.spp} spp at {size} x {size} "
-          f"({args.variant}): {args.out}-mean.pfm, {args.out}-variance.pfm")
+    # A candidate for `lumiere check` is ID.pfm beside ID.variance.pfm.
+    mean_file, variance_file = (
+        (args.out + ".pfm", args.out + ".variance.pfm") if args.xml
+        else (args.out + "-mean.pfm", args.out + "-variance.pfm")
+    )
+    write_pfm(mean_file, mean)
+    write_pfm(variance_file, variance)
+    height, width, _ = mean.shape
+    print(f"{args.xml or args.entry}: {args.renders} renders x {args.spp} spp at {width} x {height} "
+          f"({args.variant}): {mean_file}, {variance_file}")
 
 
 if __name__ == "__main__":

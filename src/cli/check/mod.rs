@@ -1,11 +1,12 @@
 //! `lumiere check`: a directory of candidate images (another renderer's, or
 //! lumiere's own after a change) against a reference suite, one verdict per entry
-//! and a summary; `--report` writes an HTML triage page, `--bless` takes the
-//! candidates as the new references.
+//! and a summary; `--physically-based` holds them to each entry's ground truth
+//! instead, `--report` writes an HTML triage page, `--bless` takes the candidates
+//! as the new references.
 
 mod report;
 
-use super::references::manifest::{Check, EntryRecord};
+use super::references::manifest::{Against, Check, EntryRecord, PhysicallyBased};
 use super::references::read_manifest;
 use anyhow::{Result, bail};
 use lumiere::{
@@ -21,6 +22,14 @@ use std::path::{Path, PathBuf};
 /// sampled entry, with --same-sampler, the per-pixel test against the reference's
 /// mean and variance. One line per entry (PASS, FAIL, MISSING), then a summary.
 ///
+/// With --physically-based, each entry's candidate is held to what a physically
+/// based renderer of its scene should reach (the manifest's `physically_based`):
+/// for a biased entry (radiosity, the two-pass methods, sampled soft shadows) the
+/// path tracer's ground truth, by Welch's t-test against the candidate's own mean
+/// (ID.exr) and per-render variance (ID.variance.exr, or .pfm) over
+/// --candidate-renders renders; for an exact entry the reference, by FLIP. Entries
+/// with no such answer (a participating medium, environment maps) are skipped.
+///
 /// Exit status: 0 when every entry passes, 1 when one fails or is missing, 2 for
 /// bad input (an unreadable manifest or candidate directory).
 #[derive(clap::Args, Debug)]
@@ -35,12 +44,29 @@ pub struct Args {
     report: Option<PathBuf>,
     /// Run the statistical checks too: the candidates sample as lumiere does (its
     /// own renders after a change).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "physically_based")]
     same_sampler: bool,
+    /// Hold the candidates to what a physically based renderer of each scene
+    /// should reach: the ground truth where the entry's method is biased.
+    #[arg(long, requires = "candidate_renders")]
+    physically_based: bool,
+    /// Renders each candidate is the mean of (its ID.variance.exr is one render's
+    /// variance), for Welch's test.
+    #[arg(long, value_name = "M", value_parser = clap::value_parser!(u32).range(2..))]
+    candidate_renders: Option<u32>,
     /// Take the failing candidates as the new references (after a deliberate
     /// change), then still exit 1 so the change is looked at before it is kept.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "physically_based")]
     bless: bool,
+}
+
+/// What the candidates are held to.
+#[derive(Clone, Copy)]
+enum Mode {
+    /// The references' checks; the statistical ones with `same_sampler`.
+    References { same_sampler: bool },
+    /// The physically based checks, the candidates the means of `renders` renders.
+    PhysicallyBased { renders: u32 },
 }
 
 /// Some entry failed or was missing: exit status 1, where bad input is 2.
@@ -66,14 +92,24 @@ pub struct Verdict {
     pub strict: Option<(f64, u8)>,
     /// Why the entry could not be compared (a size mismatch, an unreadable file).
     pub error: Option<String>,
+    /// The image the candidate is held to, relative to the suite.
+    pub against: String,
+    /// Why the entry has nothing to be held to (no physically based answer).
+    pub skipped: Option<String>,
 }
 
 impl Verdict {
     pub fn passed(&self) -> bool {
-        self.candidate.is_some() && self.error.is_none() && self.checks.iter().all(|c| c.0)
+        self.skipped.is_none()
+            && self.candidate.is_some()
+            && self.error.is_none()
+            && self.checks.iter().all(|c| c.0)
     }
 
     fn word(&self) -> &'static str {
+        if self.skipped.is_some() {
+            return "SKIP";
+        }
         match (&self.candidate, &self.error) {
             (None, _) => "MISSING",
             (_, Some(_)) => "FAIL",
@@ -96,31 +132,47 @@ pub fn run(args: Args) -> Result<()> {
             args.candidates.display()
         );
     }
+    let mode = match args.candidate_renders {
+        Some(renders) if args.physically_based => Mode::PhysicallyBased { renders },
+        _ => Mode::References {
+            same_sampler: args.same_sampler,
+        },
+    };
     let mut verdicts = Vec::new();
     for entry in &manifest.entries {
-        let verdict = check_entry(&suite, entry, &args.candidates, args.same_sampler);
+        let verdict = check_entry(&suite, entry, &args.candidates, mode);
         let figures: Vec<&str> = verdict.checks.iter().map(|c| c.1.as_str()).collect();
-        let detail = match (&verdict.candidate, &verdict.error) {
-            (None, _) => format!(
+        let detail = match (&verdict.skipped, &verdict.candidate, &verdict.error) {
+            (Some(why), _, _) => format!("no physically based answer: {why}"),
+            (_, None, _) => format!(
                 "no {}.exr, .pfm or .png in {}",
                 entry.id,
                 args.candidates.display()
             ),
-            (_, Some(e)) => e.clone(),
+            (_, _, Some(e)) => e.clone(),
             _ => figures.join("; "),
         };
         outln!("{:<8}{:<32}{detail}", verdict.word(), entry.id)?;
         verdicts.push(verdict);
     }
     let passed = verdicts.iter().filter(|v| v.passed()).count();
-    let missing = verdicts.iter().filter(|v| v.candidate.is_none()).count();
-    let failed = verdicts.len() - passed - missing;
+    let skipped = verdicts.iter().filter(|v| v.skipped.is_some()).count();
+    let missing = verdicts
+        .iter()
+        .filter(|v| v.skipped.is_none() && v.candidate.is_none())
+        .count();
+    let failed = verdicts.len() - passed - missing - skipped;
+    let tail = if skipped > 0 {
+        format!(" ({skipped} skipped: no physically based answer)")
+    } else {
+        String::new()
+    };
     outln!(
-        "{passed} passed, {failed} failed, {missing} missing of {}",
-        verdicts.len()
+        "{passed} passed, {failed} failed, {missing} missing of {}{tail}",
+        verdicts.len() - skipped
     )?;
     if let Some(dir) = &args.report {
-        report::write(dir, &suite, &manifest.entries, &verdicts)?;
+        report::write(dir, &suite, &verdicts)?;
     }
     if args.bless {
         let blessed = bless(&suite, &manifest.entries, &verdicts)?;
@@ -130,10 +182,10 @@ pub fn run(args: Args) -> Result<()> {
         ))
         .into());
     }
-    if passed < verdicts.len() {
+    if passed + skipped < verdicts.len() {
         return Err(Failed(format!(
             "{failed} failed and {missing} missing of {} entries",
-            verdicts.len()
+            verdicts.len() - skipped
         ))
         .into());
     }
@@ -148,12 +200,48 @@ fn find_candidate(dir: &Path, id: &str) -> Option<PathBuf> {
         .find(|p| p.is_file())
 }
 
-fn check_entry(
-    suite: &Path,
-    entry: &EntryRecord,
-    candidates: &Path,
-    same_sampler: bool,
-) -> Verdict {
+/// What an entry's candidate is held to in `mode`: the image, its variance file
+/// and renders (if sampled), and the checks; or why there is nothing.
+struct Target<'a> {
+    image: String,
+    variance: Option<(String, u32)>,
+    checks: &'a [Check],
+}
+
+fn target(entry: &EntryRecord, mode: Mode) -> std::result::Result<Target<'_>, String> {
+    let reference = || Target {
+        image: entry.files.reference.clone(),
+        variance: entry.files.variance.clone().map(|v| (v, entry.renders)),
+        checks: &entry.checks,
+    };
+    let Mode::PhysicallyBased { .. } = mode else {
+        return Ok(reference());
+    };
+    match &entry.physically_based {
+        PhysicallyBased::Unchecked { none } => Err(none.clone()),
+        PhysicallyBased::Checked {
+            against: Against::Reference,
+            checks,
+        } => Ok(Target {
+            checks,
+            ..reference()
+        }),
+        PhysicallyBased::Checked {
+            against: Against::GroundTruth,
+            checks,
+        } => Ok(Target {
+            image: entry.files.ground_truth.clone().unwrap_or_default(),
+            variance: entry
+                .files
+                .ground_truth_variance
+                .clone()
+                .zip(entry.ground_truth.as_ref().map(|g| g.renders)),
+            checks,
+        }),
+    }
+}
+
+fn check_entry(suite: &Path, entry: &EntryRecord, candidates: &Path, mode: Mode) -> Verdict {
     let mut verdict = Verdict {
         id: entry.id.clone(),
         title: entry.title.clone(),
@@ -162,23 +250,49 @@ fn check_entry(
         flip: None,
         strict: None,
         error: None,
+        against: entry.files.reference.clone(),
+        skipped: None,
     };
+    let target = match target(entry, mode) {
+        Ok(target) => target,
+        Err(why) => {
+            verdict.skipped = Some(why);
+            return verdict;
+        }
+    };
+    verdict.against = target.image.clone();
     if let Some(path) = verdict.candidate.clone()
-        && let Err(e) = measure(suite, entry, &path, same_sampler, &mut verdict)
+        && let Err(e) = measure(suite, entry, &target, &path, mode, &mut verdict)
     {
         verdict.error = Some(super::one_line(&format!("{e:#}")));
     }
     verdict
 }
 
+/// The candidate's variance file beside it (`ID.variance.exr`, or `.pfm`).
+fn find_variance(candidate: &Path, id: &str) -> Result<PathBuf> {
+    let dir = candidate.parent().unwrap_or(Path::new("."));
+    ["exr", "pfm"]
+        .iter()
+        .map(|ext| dir.join(format!("{id}.variance.{ext}")))
+        .find(|p| p.is_file())
+        .ok_or_else(|| {
+            anyhow::anyhow!(
+                "no {id}.variance.exr or .pfm in {}: Welch's test needs the candidate's per-render variance",
+                dir.display()
+            )
+        })
+}
+
 fn measure(
     suite: &Path,
     entry: &EntryRecord,
+    target: &Target,
     candidate_path: &Path,
-    same_sampler: bool,
+    mode: Mode,
     verdict: &mut Verdict,
 ) -> Result<()> {
-    let reference = read_image(&suite.join(&entry.files.reference))?;
+    let reference = read_image(&suite.join(&target.image))?;
     let candidate = read_image(candidate_path)?;
     if (candidate.width, candidate.height) != (reference.width, reference.height) {
         bail!(
@@ -192,7 +306,7 @@ fn measure(
     }
     let strict = compare_images(&reference, &candidate, 1.0)?;
     verdict.strict = Some((strict.rmse, strict.max_difference));
-    for check in &entry.checks {
+    for check in target.checks {
         match check {
             Check::Flip { range, max_mean } => {
                 let range = match range.as_str() {
@@ -214,22 +328,47 @@ fn measure(
             Check::Statistical {
                 alpha,
                 min_accepted,
+                same_sampler_only,
                 ..
-            } if same_sampler => {
-                let variance_file = entry.files.variance.as_ref().ok_or_else(|| {
+            } if matches!(mode, Mode::References { same_sampler: true })
+                || (!same_sampler_only && matches!(mode, Mode::PhysicallyBased { .. })) =>
+            {
+                let (variance_file, renders) = target.variance.as_ref().ok_or_else(|| {
                     anyhow::anyhow!("{}: a statistical check without a variance", entry.id)
                 })?;
                 let moments = Moments {
                     mean: reference.clone(),
                     variance: read_image(&suite.join(variance_file))?,
-                    renders: entry.renders,
+                    renders: *renders,
                 };
-                let t = statistical_test(
-                    &moments,
-                    Candidate::Render(&candidate),
-                    *alpha,
-                    *min_accepted,
-                )?;
+                let own = match mode {
+                    Mode::PhysicallyBased { renders } => {
+                        let path = find_variance(candidate_path, &entry.id)?;
+                        let variance = read_image(&path)?;
+                        if (variance.width, variance.height) != (candidate.width, candidate.height)
+                        {
+                            bail!(
+                                "{}: is {}x{}, the candidate is {}x{}",
+                                path.display(),
+                                variance.width,
+                                variance.height,
+                                candidate.width,
+                                candidate.height
+                            );
+                        }
+                        Some(Moments {
+                            mean: candidate.clone(),
+                            variance,
+                            renders,
+                        })
+                    }
+                    Mode::References { .. } => None,
+                };
+                let tested = match &own {
+                    Some(m) => Candidate::Moments(m),
+                    None => Candidate::Render(&candidate),
+                };
+                let t = statistical_test(&moments, tested, *alpha, *min_accepted)?;
                 let sign = if t.passed { ">=" } else { "<" };
                 verdict.checks.push((
                     t.passed,

@@ -3,7 +3,6 @@
 //! difference | candidate strip. Plain HTML and PNG files, no script, nothing
 //! fetched from elsewhere, readable on a phone; written whole or not at all.
 
-use super::super::references::manifest::EntryRecord;
 use super::Verdict;
 use anyhow::Result;
 use lumiere::StagedDirectory;
@@ -14,12 +13,7 @@ use std::path::Path;
 /// Magnification of the difference panel.
 const GAIN: f32 = 8.0;
 
-pub fn write(
-    dir: &Path,
-    suite: &Path,
-    entries: &[EntryRecord],
-    verdicts: &[Verdict],
-) -> Result<()> {
+pub fn write(dir: &Path, suite: &Path, verdicts: &[Verdict]) -> Result<()> {
     let staged = StagedDirectory::for_replacing(dir)?;
     std::fs::create_dir_all(staged.root().join("images"))?;
     // Worst first: missing and unreadable, then failed by FLIP, then passed by FLIP.
@@ -45,7 +39,7 @@ pub fn write(
         verdicts.len()
     )?;
     for i in order {
-        let (entry, v) = (&entries[i], &verdicts[i]);
+        let v = &verdicts[i];
         let id = escape(&v.id);
         let class = if v.passed() { "pass" } else { "fail" };
         writeln!(
@@ -56,7 +50,7 @@ pub fn write(
         )?;
         // Read again rather than kept from the check: a suite's images would all be
         // held at once.
-        let reference = read_image(&suite.join(&entry.files.reference))?;
+        let reference = read_image(&suite.join(&v.against))?;
         match (&v.candidate, &v.error) {
             (Some(path), None) => {
                 let candidate = read_image(path)?;
@@ -80,6 +74,14 @@ pub fn write(
                         .iter()
                         .map(|f| format!("<li>{f}</li>"))
                         .collect::<String>()
+                )?;
+            }
+            _ if v.skipped.is_some() => {
+                let why = v.skipped.as_deref().unwrap_or_default();
+                writeln!(
+                    html,
+                    "<p class=\"why\">no physically based answer: {}</p>",
+                    escape(why)
                 )?;
             }
             (candidate, error) => {

@@ -4,7 +4,10 @@
 //! Staged in a hidden directory and moved in whole, with `entry.json` (its record
 //! and the settings it was made with) inside, so an interrupted suite resumes.
 
-use super::manifest::{Check, EntryRecord, Export, Files, Settings};
+use super::ground_truth::{self, Plan};
+use super::manifest::{
+    Against, Check, EntryRecord, Export, Files, GroundTruth, PhysicallyBased, Settings,
+};
 use anyhow::{Context, Result};
 use clap::ValueEnum;
 use lumiere::StagedDirectory;
@@ -84,6 +87,8 @@ pub fn make(suite: &Path, id: &str, settings: &Settings) -> Result<EntryRecord> 
         variance: None,
         buffers: BTreeMap::new(),
         scene: format!("{id}/scene.toml"),
+        ground_truth: None,
+        ground_truth_variance: None,
     };
     let renders = if sampled {
         let mut sum = MomentsSum::new(frame.image.width, frame.image.height);
@@ -125,6 +130,28 @@ pub fn make(suite: &Path, id: &str, settings: &Settings) -> Result<EntryRecord> 
     std::fs::write(root.join("scene.toml"), scene_text).context("scene.toml")?;
 
     let scene = load_scene(id, &sets)?;
+    let plan = ground_truth::plan(&scene);
+    let mut made_truth = None;
+    if let Plan::Trace {
+        transport,
+        biased_by,
+    } = &plan
+    {
+        let paths = settings.ground_truth_paths;
+        let traced = ground_truth::scene_table(&table, *transport, paths);
+        let moments = ground_truth::render(&traced, settings.samples)
+            .with_context(|| format!("{id}: its ground truth"))?;
+        write("ground-truth.exr", &moments.mean, 1.0)?;
+        write("ground-truth-variance.exr", &moments.variance, 1.0)?;
+        files.ground_truth = Some(format!("{id}/ground-truth.exr"));
+        files.ground_truth_variance = Some(format!("{id}/ground-truth-variance.exr"));
+        made_truth = Some(GroundTruth {
+            transport: *transport,
+            renders: settings.samples,
+            paths: paths * paths,
+            biased_by: biased_by.clone(),
+        });
+    }
     std::fs::create_dir_all(root.join("export")).context("export")?;
     let mut exports = BTreeMap::new();
     for format in Format::value_variants() {
@@ -164,6 +191,28 @@ pub fn make(suite: &Path, id: &str, settings: &Settings) -> Result<EntryRecord> 
             same_sampler_only: true,
         });
     }
+    // Another renderer's mean over its own renders, against a path tracer's.
+    let welch = vec![Check::Statistical {
+        test: "welch".into(),
+        alpha: ALPHA,
+        min_accepted: MIN_ACCEPTED,
+        same_sampler_only: false,
+    }];
+    let physically_based = match plan {
+        Plan::Trace { .. } => PhysicallyBased::Checked {
+            against: Against::GroundTruth,
+            checks: welch,
+        },
+        Plan::Itself if sampled => PhysicallyBased::Checked {
+            against: Against::Reference,
+            checks: welch,
+        },
+        Plan::Itself | Plan::Exact => PhysicallyBased::Checked {
+            against: Against::Reference,
+            checks: checks[..1].to_vec(),
+        },
+        Plan::Unavailable(why) => PhysicallyBased::Unchecked { none: why },
+    };
     let record = EntryRecord {
         id: id.to_string(),
         title: entry.algorithm.title.clone(),
@@ -182,6 +231,8 @@ pub fn make(suite: &Path, id: &str, settings: &Settings) -> Result<EntryRecord> 
         files,
         exports,
         checks,
+        ground_truth: made_truth,
+        physically_based,
     };
     let made = Made {
         settings: *settings,

@@ -1,12 +1,13 @@
-//! The reference suite's manifest (`manifest.json`), schema `lumiere-reference-suite/1`:
+//! The reference suite's manifest (`manifest.json`), schema `lumiere-reference-suite/2`:
 //!
 //! ```text
 //! {
-//!   "schema": "lumiere-reference-suite/1",
+//!   "schema": "lumiere-reference-suite/2",
 //!   "lumiere": "0.1.0",                     the version that made it
 //!   "settings": { "width": 256 | null,      null: each entry's test size
 //!                 "samples": 16,            seeds of a sampled entry
-//!                 "supersample": 4 },       samples per pixel side
+//!                 "supersample": 4,         samples per pixel side
+//!                 "ground_truth_paths": 16 }, a ground truth's paths per pixel side
 //!   "ids": [...],                           the entries asked for, catalogue order
 //!   "shard": { "index": 1, "count": 4 },    only in one part of a sharded suite
 //!   "entries": [ {                          one per id (of this shard)
@@ -17,12 +18,20 @@
 //!     "files": { "reference": "ID/reference.exr",      linear, 32-bit float
 //!                "variance": "ID/variance.exr",        sampled entries only
 //!                "buffers": { NAME: "ID/buffers/NAME.exr" | ".png" },
-//!                "scene": "ID/scene.toml" },           lumiere's own scene
+//!                "scene": "ID/scene.toml",             lumiere's own scene
+//!                "ground_truth": "ID/ground-truth.exr",         biased entries:
+//!                "ground_truth_variance": "ID/ground-truth-variance.exr" }, path traced
+//!     "ground_truth": { "transport": "full" | "direct",  every path, or one surface
+//!                       "renders": N, "paths": P,       seeds, paths per pixel each
+//!                       "biased_by": "radiosity" },     what the entry's method misses
 //!     "exports": { FORMAT: { "file": "ID/export/scene.EXT",
 //!                            "left_out": [ "..." ] } | { "error": "..." } },
 //!     "checks": [ { "metric": "flip", "range": "ldr", "max_mean": X },
 //!                 { "metric": "statistical", "test": "z", "alpha": A,
-//!                   "min_accepted": L, "same_sampler_only": true } ]
+//!                   "min_accepted": L, "same_sampler_only": true } ],
+//!     "physically_based": { "against": "reference" | "ground-truth",
+//!                           "checks": [ ... ] }     what a physically based renderer
+//!                       | { "none": "why" }         of the scene is held to
 //!   } ]
 //! }
 //! ```
@@ -33,7 +42,7 @@
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
-pub const SCHEMA: &str = "lumiere-reference-suite/1";
+pub const SCHEMA: &str = "lumiere-reference-suite/2";
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -53,6 +62,8 @@ pub struct Settings {
     pub width: Option<u32>,
     pub samples: u32,
     pub supersample: u32,
+    /// Paths per pixel side of each of a ground truth's renders.
+    pub ground_truth_paths: u32,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -80,6 +91,53 @@ pub struct EntryRecord {
     pub files: Files,
     pub exports: BTreeMap<String, Export>,
     pub checks: Vec<Check>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ground_truth: Option<GroundTruth>,
+    pub physically_based: PhysicallyBased,
+}
+
+/// How a biased entry's ground truth was made.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroundTruth {
+    pub transport: Transport,
+    /// Renders (seeds) its mean and variance are taken over.
+    pub renders: u32,
+    /// Paths per pixel of each render.
+    pub paths: u32,
+    /// What the entry's own method leaves out or approximates.
+    pub biased_by: String,
+}
+
+/// The light a ground truth carries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Transport {
+    /// Every path from the lights to the eye.
+    Full,
+    /// Direct light only: paths of one surface.
+    Direct,
+}
+
+/// What a physically based renderer's image of the scene is held to.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged, deny_unknown_fields)]
+pub enum PhysicallyBased {
+    Checked {
+        against: Against,
+        checks: Vec<Check>,
+    },
+    /// No answer a physically based renderer should reach, and why.
+    Unchecked { none: String },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Against {
+    /// The entry's reference: an exact method, or a path tracer's own.
+    Reference,
+    /// `files.ground_truth`, with `files.ground_truth_variance`.
+    GroundTruth,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -90,6 +148,10 @@ pub struct Files {
     pub variance: Option<String>,
     pub buffers: BTreeMap<String, String>,
     pub scene: String,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ground_truth: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ground_truth_variance: Option<String>,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -105,9 +167,11 @@ pub enum Export {
 pub enum Check {
     /// Mean FLIP at most `max_mean` (any renderer's image of the scene).
     Flip { range: String, max_mean: f64 },
-    /// The per-pixel test against the reference's mean and variance: for a
-    /// candidate that samples as lumiere does (lumiere itself after a change);
-    /// `lumiere check --same-sampler` runs it.
+    /// The per-pixel test against the reference's mean and variance. `z`: one
+    /// render of a candidate that samples as lumiere does (lumiere itself after a
+    /// change), which `lumiere check --same-sampler` runs. `welch`: any
+    /// renderer's mean and variance over its own renders, which `lumiere check
+    /// --physically-based` runs.
     Statistical {
         test: String,
         alpha: f64,

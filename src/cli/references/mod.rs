@@ -3,6 +3,7 @@
 //! K/N`) that `--merge` joins into the same bytes.
 
 mod entry;
+mod ground_truth;
 pub mod manifest;
 mod merge;
 
@@ -41,11 +42,16 @@ pub struct Args {
     /// Samples per pixel side: antialiased by default, as the peers' renders are.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=16))]
     supersample: u32,
+    /// Paths per pixel side of each of a ground truth's renders (--samples of
+    /// them): biased entries (radiosity, the two-pass methods, sampled soft
+    /// shadows) get the path tracer's answer beside their reference.
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..=64))]
+    ground_truth_paths: u32,
     /// Make part K of N (1 ≤ K ≤ N).
     #[arg(long, value_name = "K/N", value_parser = shard, conflicts_with = "merge")]
     shard: Option<Shard>,
     /// Join the parts made with --shard in these directories into --output.
-    #[arg(long, value_name = "DIR", num_args = 1.., conflicts_with_all = ["ids", "width", "supersample"])]
+    #[arg(long, value_name = "DIR", num_args = 1.., conflicts_with_all = ["ids", "width", "supersample", "ground_truth_paths"])]
     merge: Vec<PathBuf>,
 }
 
@@ -81,6 +87,7 @@ pub fn run(args: Args) -> Result<()> {
         width: args.width,
         samples: args.samples,
         supersample: args.supersample,
+        ground_truth_paths: args.ground_truth_paths,
     };
     let mine: Vec<&String> = ids
         .iter()

@@ -5,6 +5,7 @@ mod compare_metrics;
 mod contact_sheet;
 mod fuzzy_compare;
 mod gallery;
+mod ground_truth_peers;
 mod interrupt;
 mod reference_suite;
 mod reference_suite_peers;

@@ -14,7 +14,17 @@ const IDS: [&str; 3] = [
 ];
 
 fn make(dir: &Path, out: &str, extra: &[&str]) -> Run {
-    let mut args = vec!["references", "-o", out, "--width", "40", "--samples", "4"];
+    let mut args = vec![
+        "references",
+        "-o",
+        out,
+        "--width",
+        "40",
+        "--samples",
+        "4",
+        "--ground-truth-paths",
+        "2",
+    ];
     args.extend(IDS);
     args.extend(extra);
     let run = lumiere(&args, dir);
@@ -125,6 +135,102 @@ fn a_suite_is_the_same_bytes_made_whole_again_or_in_merged_shards() {
     let variance =
         lumiere::read_image(&d.join("whole/jittered-soft-shadows/variance.exr")).unwrap();
     assert!(variance.pixels.iter().any(|p| p.x > 0.0));
+
+    // What a physically based renderer is held to: the path tracer's direct light
+    // where the light is sampled, the reference where the method is exact, nothing
+    // where the lights cast no shadows.
+    assert_eq!(m["settings"]["ground_truth_paths"], 2);
+    assert_eq!(
+        jittered["ground_truth"],
+        serde_json::json!({
+            "transport": "direct", "renders": 4, "paths": 4,
+            "biased_by": "shadows.method = \"jittered-soft-shadows\""
+        })
+    );
+    assert_eq!(jittered["physically_based"]["against"], "ground-truth");
+    assert_eq!(jittered["physically_based"]["checks"][0]["test"], "welch");
+    for key in ["ground_truth", "ground_truth_variance"] {
+        let file = jittered["files"][key].as_str().unwrap();
+        let image = lumiere::read_image(&d.join("whole").join(file)).unwrap();
+        assert_eq!((image.width, image.height), (40, 30), "{file}");
+    }
+    // Direct light, as the entry's: the ground truth's mean is the reference's
+    // within a few percent (the jittered cells sample the same light).
+    let mean = |file: &str| {
+        let image = lumiere::read_image(&d.join("whole").join(file)).unwrap();
+        image.pixels.iter().map(|p| p.x as f64).sum::<f64>() / image.pixels.len() as f64
+    };
+    let (truth, reference) = (
+        mean("jittered-soft-shadows/ground-truth.exr"),
+        mean("jittered-soft-shadows/reference.exr"),
+    );
+    assert!(
+        (truth / reference - 1.0).abs() < 0.03,
+        "ground truth {truth}, reference {reference}"
+    );
+    let visible = &entries[1];
+    assert!(visible.get("ground_truth").is_none());
+    assert!(
+        visible["physically_based"]["none"]
+            .as_str()
+            .unwrap()
+            .contains("cast no shadows"),
+        "{visible}"
+    );
+    assert_eq!(volumes["physically_based"]["against"], "reference");
+    assert_eq!(volumes["physically_based"]["checks"], volumes["checks"]);
+}
+
+#[test]
+fn check_holds_physically_based_candidates_to_each_entrys_answer() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    make(d, "suite", &[]);
+    std::fs::create_dir_all(d.join("c")).unwrap();
+    // The suite's own images as candidates: the ground truth with its variance,
+    // the exact reference, and the reference of the entry that has no answer.
+    let copy = |from: &str, to: &str| {
+        std::fs::copy(d.join("suite").join(from), d.join("c").join(to)).unwrap();
+    };
+    copy(
+        "jittered-soft-shadows/ground-truth.exr",
+        "jittered-soft-shadows.exr",
+    );
+    copy(
+        "jittered-soft-shadows/ground-truth-variance.exr",
+        "jittered-soft-shadows.variance.exr",
+    );
+    copy("shadow-volumes/reference.exr", "shadow-volumes.exr");
+    copy(
+        "scanline-visible-surface/reference.exr",
+        "scanline-visible-surface.exr",
+    );
+    let check = |extra: &[&str]| {
+        let mut args = vec!["check", "suite/manifest.json", "c", "--physically-based"];
+        args.extend(extra);
+        lumiere(&args, d)
+    };
+    let run = check(&["--candidate-renders", "4"]);
+    assert_eq!(run.code, 0, "{}{}", run.stdout, run.stderr);
+    assert!(
+        run.stdout
+            .contains("2 passed, 0 failed, 0 missing of 2 (1 skipped: no physically based answer)"),
+        "{}",
+        run.stdout
+    );
+    assert!(
+        run.stdout.contains("welch-test 100.000% accepted"),
+        "{}",
+        run.stdout
+    );
+    assert!(run.stdout.contains("SKIP"), "{}", run.stdout);
+    // Welch's test needs the candidate's renders; same-sampler and physically
+    // based checks are one or the other.
+    let run = check(&[]);
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    assert!(run.stderr.contains("--candidate-renders"), "{}", run.stderr);
+    let run = check(&["--candidate-renders", "4", "--same-sampler"]);
+    assert_eq!(run.code, 2, "{}", run.stderr);
 }
 
 #[test]

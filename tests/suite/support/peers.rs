@@ -17,7 +17,9 @@ fn install_when_missing() {
         .status()
         .is_ok_and(|s| s.success())
         && Command::new("sh")
-            .args(["-c", "command -v povray"])
+            // Mitsuba's llvm variants load Debian's libLLVM-19.
+            .args(["-c", "command -v povray && dpkg -s libllvm19"])
+            .stdout(std::process::Stdio::null())
             .status()
             .is_ok_and(|s| s.success());
     if !ready {

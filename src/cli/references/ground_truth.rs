@@ -1,0 +1,160 @@
+//! The ground truth of a biased entry: the same scene rendered by Kajiya's path
+//! tracer (`[global] method = "path-tracing"`), the mean and variance of its
+//! renders over seeds, so that a physically based renderer is held to what the
+//! scene's light is, not to what radiosity's mesh or sixteen points on a light
+//! make of it.
+//!
+//! Which entries have one, and with which transport:
+//! - radiosity, the two-pass methods and the photon map: every path (the light
+//!   their solutions approximate; Mitsuba's export of them asks for unbounded
+//!   paths too);
+//! - soft shadows from a sampled light (ray casting under an extended light,
+//!   Brotman & Badler's points, Cook's jittered cells) and shadow maps (their
+//!   depth bias and texels): direct light only, paths of one surface (the
+//!   transport the entry and its Mitsuba export model);
+//! - the path-tracing entries: their reference is the ground truth already;
+//! - a participating medium (light volumes), translucent panels, glossy mirrors
+//!   or environment-mapped materials: none, for the path tracer carries no
+//!   medium, no diffuse transmission and no glossy lobe about the mirror, and
+//!   traces a mirror where the entry reads a map of surroundings a path would not
+//!   meet (the manifest says which); nor lights that cast no shadows
+//!   (`shadows.method = "none"`);
+//! - every other entry is exact for what it models: its reference is the answer.
+
+use super::manifest::Transport;
+use anyhow::{Context, Result};
+use lumiere::glam::Vec3;
+use lumiere::render::integrators::Integrator;
+use lumiere::scene::{Light, Scene};
+use lumiere::settings::ShadowMethod;
+use lumiere::{Moments, MomentsSum, Renderer, scene_from_toml};
+
+/// What a physically based renderer is held to for one entry.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Plan {
+    /// A path-traced ground truth with this transport, for an entry whose method
+    /// is biased by `biased_by`.
+    Trace {
+        transport: Transport,
+        biased_by: String,
+    },
+    /// The reference is a path tracer's: the ground truth itself.
+    Itself,
+    /// A biased entry the path tracer cannot give the answer for, and why.
+    Unavailable(String),
+    /// An exact method: the reference is the answer.
+    Exact,
+}
+
+/// The plan for `scene` (an entry's scene as its reference renders it).
+pub fn plan(scene: &Scene) -> Plan {
+    let integrator = Integrator::of(scene);
+    if integrator == Integrator::PathTracing {
+        return Plan::Itself;
+    }
+    let used = |index: usize| scene.polygons.iter().any(|p| p.material == index);
+    let materials = || {
+        scene
+            .materials
+            .iter()
+            .enumerate()
+            .filter(move |(i, _)| used(*i))
+            .map(|(_, m)| m)
+    };
+    if materials().any(|m| m.translucence != Vec3::ZERO) {
+        return Plan::Unavailable(
+            "translucent panels (diffuse transmission): the path tracer carries none".into(),
+        );
+    }
+    if materials().any(|m| m.gloss.is_some()) {
+        return Plan::Unavailable(
+            "a glossy mirror (`gloss`): the path tracer's mirrors are ideal".into(),
+        );
+    }
+    match integrator {
+        Integrator::Radiosity
+        | Integrator::TwoPass
+        | Integrator::RushmeierTorrance
+        | Integrator::PhotonMap => {
+            return Plan::Trace {
+                transport: Transport::Full,
+                biased_by: integrator.name().to_string(),
+            };
+        }
+        Integrator::PathTracing | Integrator::RayTracing | Integrator::Direct => {}
+    }
+    if scene.medium.is_some() {
+        return Plan::Unavailable(
+            "a participating medium (light volumes): the path tracer carries none".into(),
+        );
+    }
+    if materials().any(|m| m.environment.is_some()) {
+        return Plan::Unavailable(
+            "environment-mapped materials: a map stands for surroundings a traced path does not meet".into(),
+        );
+    }
+    if integrator == Integrator::RayTracing {
+        return Plan::Exact;
+    }
+    let extended = scene
+        .lights
+        .iter()
+        .any(|l| matches!(l, Light::Polygon(_) | Light::Sphere(_)));
+    let method = scene.shadows.method;
+    if method == ShadowMethod::None && !scene.lights.is_empty() {
+        return Plan::Unavailable(
+            "shadows.method = \"none\": its lights cast no shadows, which a physically based renderer's do".into(),
+        );
+    }
+    let biased = match method {
+        ShadowMethod::SoftShadowVolumes
+        | ShadowMethod::JitteredSoftShadows
+        | ShadowMethod::ShadowMap => true,
+        ShadowMethod::RayCast => extended,
+        _ => false,
+    };
+    if biased {
+        Plan::Trace {
+            transport: Transport::Direct,
+            biased_by: format!("shadows.method = \"{}\"", method.name()),
+        }
+    } else {
+        Plan::Exact
+    }
+}
+
+/// The entry's scene `table` (extends resolved, its size set) made a path
+/// tracer's: its radiosity and global settings and its shadow method replaced,
+/// `paths` × `paths` paths a pixel, one surface a path for direct transport.
+pub fn scene_table(table: &toml::Table, transport: Transport, paths: u32) -> toml::Table {
+    let mut table = table.clone();
+    table.remove("radiosity");
+    table.remove("shadows");
+    let mut global = toml::Table::new();
+    global.insert("method".into(), "path-tracing".into());
+    global.insert("samples".into(), (paths as i64).into());
+    if transport == Transport::Direct {
+        global.insert("depth".into(), 1.into());
+    }
+    table.insert("global".into(), toml::Value::Table(global));
+    if let Some(render) = table.get_mut("render").and_then(|r| r.as_table_mut()) {
+        // The tracer antialiases by its paths over the pixel.
+        render.remove("supersample");
+    }
+    table
+}
+
+/// The mean and variance over `renders` seeds of the path tracer's renders of
+/// `table` (from `scene_table`).
+pub fn render(table: &toml::Table, renders: u32) -> Result<Moments> {
+    let text = toml::to_string(table).context("writing the ground truth's scene as TOML")?;
+    let mut sum: Option<MomentsSum> = None;
+    for seed in 0..renders {
+        let scene = scene_from_toml(&text, &[format!("shadows.seed={seed}")])
+            .context("the ground truth's scene")?;
+        let image = Renderer::new(scene).render()?;
+        sum.get_or_insert_with(|| MomentsSum::new(image.width, image.height))
+            .add(&image)?;
+    }
+    Ok(sum.context("no renders")?.finish()?)
+}
