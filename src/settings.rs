@@ -513,7 +513,7 @@ pub struct GlobalSettings {
 }
 
 /// Jensen's photon maps (`[global] photons`, `caustic_photons`, `nearest`,
-/// `caustic_nearest`).
+/// `caustic_nearest`, `precomputed_irradiance`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PhotonSettings {
     /// Photons the global map holds.
@@ -524,6 +524,9 @@ pub struct PhotonSettings {
     pub nearest: u32,
     /// Photons in the caustic map's radiance estimate.
     pub caustic_nearest: u32,
+    /// Christensen 1999: the final gather reads irradiance precomputed at a
+    /// fraction of the photons instead of estimating it at each ray's end.
+    pub precomputed_irradiance: bool,
 }
 
 /// The final gather over a radiosity solution (`[global.final_gather]`).

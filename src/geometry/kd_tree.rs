@@ -63,6 +63,50 @@ impl<T> KdTree<T> {
         }));
     }
 
+    /// The point nearest `x` among those whose payload `accept`s, if any: one
+    /// best-so-far distance instead of a heap, the subtrees beyond it skipped.
+    pub fn nearest_where(&self, x: DVec3, accept: impl Fn(&T) -> bool) -> Option<Neighbour> {
+        let mut best = None;
+        let mut worst = f64::INFINITY;
+        self.search_where(0, self.items.len(), x, &accept, &mut best, &mut worst);
+        best
+    }
+
+    fn search_where(
+        &self,
+        low: usize,
+        high: usize,
+        x: DVec3,
+        accept: &impl Fn(&T) -> bool,
+        best: &mut Option<Neighbour>,
+        worst: &mut f64,
+    ) {
+        if low >= high {
+            return;
+        }
+        let middle = low + (high - low) / 2;
+        let (point, payload) = &self.items[middle];
+        let axis = self.axes[middle] as usize;
+        let delta = x[axis] - point[axis];
+        let (near, far) = if delta < 0.0 {
+            ((low, middle), (middle + 1, high))
+        } else {
+            ((middle + 1, high), (low, middle))
+        };
+        self.search_where(near.0, near.1, x, accept, best, worst);
+        let distance2 = x.distance_squared(*point);
+        if distance2 < *worst && accept(payload) {
+            *worst = distance2;
+            *best = Some(Neighbour {
+                distance2,
+                index: middle,
+            });
+        }
+        if delta * delta < *worst {
+            self.search_where(far.0, far.1, x, accept, best, worst);
+        }
+    }
+
     fn search(
         &self,
         low: usize,

@@ -25,6 +25,7 @@ pub mod local;
 pub mod path_tracing;
 pub mod photon_map;
 pub mod photon_rendering;
+pub mod precomputed_irradiance;
 pub mod reflection_frustum;
 pub mod solution_radiance;
 pub mod traced_scene;

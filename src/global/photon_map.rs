@@ -49,6 +49,9 @@ use std::f64::consts::PI;
 pub struct Photon {
     /// Unit direction of travel as it arrived.
     pub direction: DVec3,
+    /// The unit normal of the surface it was stored on, on the side it arrived
+    /// at (what Christensen's precomputed irradiance is estimated with).
+    pub normal: DVec3,
     /// Its power, per band.
     pub power: Vec3,
 }
@@ -248,7 +251,11 @@ fn trace_photon(
         let facing = hit.facing(direction);
         let reflectance = reflectance_at(scene, &hit, -direction);
         if reflectance.diffuse.max_element() > 0.0 {
-            let photon = Photon { direction, power };
+            let photon = Photon {
+                direction,
+                normal: facing.normal,
+                power,
+            };
             match kind {
                 MapKind::Global => kept.push((hit.position, photon)),
                 MapKind::Caustic => {

@@ -27,6 +27,7 @@ use super::irradiance_cache::{Gatherer, IrradianceCache};
 use super::local::{background, lights_at, reflectance_at};
 use super::path_tracing::specular_coefficients;
 use super::photon_map::PhotonMap;
+use super::precomputed_irradiance::PrecomputedIrradiance;
 use super::traced_scene::{Facing, Leaving, SurfaceHit, TracedScene};
 use super::whitted::{reflected_direction, refracted_direction};
 use crate::geometry::bvh::Aabb;
@@ -43,10 +44,12 @@ use std::f32::consts::PI;
 /// Jensen's cone filter constant (his book's 1.1).
 pub const CONE: f64 = 1.1;
 
-/// The two maps of pass 1.
+/// The two maps of pass 1, and Christensen's irradiance precomputed over the
+/// global one where asked.
 pub struct PhotonMaps {
     pub global: PhotonMap,
     pub caustic: PhotonMap,
+    pub precomputed: Option<PrecomputedIrradiance>,
 }
 
 /// The final gather over the global map.
@@ -54,6 +57,7 @@ pub struct PhotonGather<'a> {
     scene: &'a Scene,
     traced: &'a TracedScene,
     global: &'a PhotonMap,
+    precomputed: Option<&'a PrecomputedIrradiance>,
     nearest: usize,
     settings: FinalGatherSettings,
     strata: Strata,
@@ -65,14 +69,15 @@ impl<'a> PhotonGather<'a> {
     pub fn new(
         scene: &'a Scene,
         traced: &'a TracedScene,
-        global: &'a PhotonMap,
+        maps: &'a PhotonMaps,
         settings: &GlobalSettings,
         gather: FinalGatherSettings,
     ) -> PhotonGather<'a> {
         PhotonGather {
             scene,
             traced,
-            global,
+            global: &maps.global,
+            precomputed: maps.precomputed.as_ref(),
             nearest: settings.photons.nearest as usize,
             settings: gather,
             strata: Strata::for_rays(gather.rays),
@@ -117,8 +122,11 @@ impl<'a> PhotonGather<'a> {
             let Facing { front, normal, .. } = hit.facing(direction);
             let reflectance = reflectance_at(self.scene, &hit, -direction);
             if reflectance.diffuse.max_element() > 0.0 {
-                radiance += weight * reflectance.diffuse / PI
-                    * self.global.irradiance(hit.position, normal, self.nearest);
+                let irradiance = self
+                    .precomputed
+                    .and_then(|p| p.irradiance(hit.position, normal))
+                    .unwrap_or_else(|| self.global.irradiance(hit.position, normal, self.nearest));
+                radiance += weight * reflectance.diffuse / PI * irradiance;
             }
             if depth > self.depth {
                 break;
@@ -231,7 +239,7 @@ impl<'a> PhotonRenderer<'a> {
         view: &View,
         backdrop: Option<&'a EnvironmentMap>,
     ) -> PhotonRenderer<'a> {
-        let gather = PhotonGather::new(scene, traced, &maps.global, settings, gather);
+        let gather = PhotonGather::new(scene, traced, maps, settings, gather);
         let cache = IrradianceCache::sweep(scene, &gather, view);
         PhotonRenderer {
             scene,

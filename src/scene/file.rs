@@ -187,6 +187,8 @@ pub struct GlobalFile {
     pub nearest: Option<u32>,
     /// Absent: 80 (photons in a caustic estimate).
     pub caustic_nearest: Option<u32>,
+    /// Absent: false (Jensen's estimate at every gather ray's end).
+    pub precomputed_irradiance: Option<bool>,
     /// Absent: 10⁻³.
     pub threshold: Option<f64>,
     /// Absent: 2.
@@ -221,6 +223,7 @@ impl GlobalFile {
             caustic_photons,
             nearest,
             caustic_nearest,
+            precomputed_irradiance,
             threshold,
             subdivisions,
             contrast,
@@ -240,6 +243,10 @@ impl GlobalFile {
             ("global.caustic_photons", caustic_photons.is_some()),
             ("global.nearest", nearest.is_some()),
             ("global.caustic_nearest", caustic_nearest.is_some()),
+            (
+                "global.precomputed_irradiance",
+                precomputed_irradiance.is_some(),
+            ),
             ("global.threshold", threshold.is_some()),
             ("global.subdivisions", subdivisions.is_some()),
             ("global.contrast", contrast.is_some()),

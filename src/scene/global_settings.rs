@@ -99,6 +99,7 @@ pub fn from_file(g: &GlobalFile) -> Result<Settings> {
         caustic: g.caustic_photons.unwrap_or(100_000),
         nearest: g.nearest.unwrap_or(100),
         caustic_nearest: g.caustic_nearest.unwrap_or(80),
+        precomputed_irradiance: g.precomputed_irradiance.unwrap_or(false),
     };
     for (key, value) in [
         ("global.photons", photons.global),

@@ -12,6 +12,7 @@ use crate::error::{Error, Result};
 use crate::global::TracedScene;
 use crate::global::photon_map::{MapKind, shoot};
 use crate::global::photon_rendering::{PhotonMaps, PhotonRenderer};
+use crate::global::precomputed_irradiance::PrecomputedIrradiance;
 use crate::image_io::{Buffer, BufferData};
 use crate::scene::Scene;
 use crate::scene::global_settings::default_final_gather;
@@ -37,6 +38,7 @@ pub static DECLARATION: Declaration = Declaration {
         "global.caustic_photons",
         "global.nearest",
         "global.caustic_nearest",
+        "global.precomputed_irradiance",
         "global.final_gather",
     ],
     buffers: &[PHOTONS.0],
@@ -81,14 +83,19 @@ impl Kept for KeptPhotons {
             Some((made_for, maps)) if *made_for == key => maps.clone(),
             _ => {
                 let seed = scene.shadows.seed;
+                let global = shoot(
+                    scene,
+                    &traced,
+                    MapKind::Global,
+                    settings.photons.global,
+                    seed,
+                );
+                let precomputed = settings.photons.precomputed_irradiance.then(|| {
+                    PrecomputedIrradiance::new(&global, settings.photons.nearest as usize)
+                });
                 let maps = Arc::new(PhotonMaps {
-                    global: shoot(
-                        scene,
-                        &traced,
-                        MapKind::Global,
-                        settings.photons.global,
-                        seed,
-                    ),
+                    global,
+                    precomputed,
                     caustic: shoot(
                         scene,
                         &traced,

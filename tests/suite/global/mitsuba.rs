@@ -266,3 +266,13 @@ fn the_photon_map_brings_the_global_cornell_box_within_0_02_of_a_path_tracer() {
     let photons = flip_of("photon-map", &[], GLOBAL_REFERENCE, 256);
     assert!(photons <= 0.02, "photon-map: FLIP {photons:.5}");
 }
+
+/// Christensen's precomputed irradiance (`photon-map-precomputed`: the same map,
+/// the gather reading the estimate made at every fourth photon) against the same
+/// reference: measured 0.0180, within the 0.02 with a margin of 0.0020, in a
+/// tenth of the time (4.3 s against 44 s at 256 x 256 on 2 cores).
+#[test]
+fn precomputed_irradiance_keeps_the_photon_map_within_0_02_of_a_path_tracer() {
+    let photons = flip_of("photon-map-precomputed", &[], GLOBAL_REFERENCE, 256);
+    assert!(photons <= 0.02, "photon-map-precomputed: FLIP {photons:.5}");
+}

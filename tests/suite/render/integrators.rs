@@ -23,7 +23,7 @@ fn listed_at(integrator: Integrator) -> usize {
 
 /// Every scene key an integrator may read, with a valid value to set it to (as
 /// `--set` writes it), apart from the registry.
-const KEYS: [(&str, &str); 18] = [
+const KEYS: [(&str, &str); 19] = [
     ("radiosity", "radiosity.solver=\"gathering\""),
     ("global.depth", "global.depth=3"),
     ("global.samples", "global.samples=2"),
@@ -31,6 +31,10 @@ const KEYS: [(&str, &str); 18] = [
     ("global.caustic_photons", "global.caustic_photons=1000"),
     ("global.nearest", "global.nearest=10"),
     ("global.caustic_nearest", "global.caustic_nearest=10"),
+    (
+        "global.precomputed_irradiance",
+        "global.precomputed_irradiance=true",
+    ),
     ("global.threshold", "global.threshold=0.01"),
     ("global.subdivisions", "global.subdivisions=1"),
     ("global.contrast", "global.contrast=0.1"),
@@ -52,7 +56,8 @@ const KEYS: [(&str, &str); 18] = [
 /// radiosity solution, the ray tree of pass 2, mirror windows, the reflection
 /// frustum, the mechanisms, exact direct light and the final gather; Kajiya's path
 /// tracer its paths' depth, their number and the spheres; Jensen's photon map
-/// those, its two maps' photons and estimates, and its final gather.
+/// those, its two maps' photons and estimates, its final gather, and Christensen's
+/// precomputed irradiance.
 fn papers_keys(integrator: Integrator) -> Vec<&'static str> {
     let two_pass = vec![
         "radiosity",
@@ -88,6 +93,7 @@ fn papers_keys(integrator: Integrator) -> Vec<&'static str> {
             "global.caustic_photons",
             "global.nearest",
             "global.caustic_nearest",
+            "global.precomputed_irradiance",
             "global.final_gather",
         ],
     }
