@@ -100,7 +100,21 @@ pub(super) fn write(
             mesh.faceted
         );
         let _ = writeln!(xml, "    <!-- material {} -->", escape(&material.name));
-        if material.mirror != Vec3::ZERO {
+        if let Some(ior) = material.ior {
+            // Glass: Fresnel's reflection tinted by the mirror colour (white when
+            // unset) and the transmitted rest by the transmittance, as lumiere's.
+            let tint = if material.mirror == Vec3::ZERO {
+                Vec3::ONE
+            } else {
+                material.mirror
+            };
+            let _ = writeln!(
+                xml,
+                "    <bsdf type=\"dielectric\">\n      <float name=\"int_ior\" value=\"{ior}\"/>\n      <float name=\"ext_ior\" value=\"1\"/>\n      {}\n      {}\n    </bsdf>",
+                rgb("specular_reflectance", tint),
+                rgb("specular_transmittance", material.transmittance)
+            );
+        } else if material.mirror != Vec3::ZERO {
             let _ = writeln!(
                 xml,
                 "    <bsdf type=\"conductor\">\n      <string name=\"material\" value=\"none\"/>\n      {}\n    </bsdf>",

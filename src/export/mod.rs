@@ -209,6 +209,20 @@ pub fn left_out(scene: &Scene, format: Format) -> Vec<String> {
                     m.name
                 ));
             }
+        } else if format == Format::Mitsuba && m.ior.is_some() {
+            // A dielectric: Fresnel's split, as lumiere's glass.
+            if m.environment.is_some() || m.translucence != Vec3::ZERO {
+                say(format!(
+                    "material `{}`: environment maps and translucence are left out (the glass is kept)",
+                    m.name
+                ));
+            }
+            if m.diffuse != Vec3::ZERO {
+                say(format!(
+                    "material `{}`: glass with a diffuse part: the diffuse part is left out",
+                    m.name
+                ));
+            }
         } else if m.environment.is_some()
             || m.ior.is_some()
             || m.transmittance != Vec3::ZERO
@@ -219,7 +233,7 @@ pub fn left_out(scene: &Scene, format: Format) -> Vec<String> {
                 m.name
             ));
         }
-        if m.mirror != Vec3::ZERO {
+        if m.mirror != Vec3::ZERO && !(format == Format::Mitsuba && m.ior.is_some()) {
             match format {
                 Format::Pov => say(format!(
                     "material `{}`: the mirror is left out of POV-Ray's direct light",

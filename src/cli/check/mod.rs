@@ -261,6 +261,13 @@ fn check_entry(suite: &Path, entry: &EntryRecord, candidates: &Path, mode: Mode)
         }
     };
     verdict.against = target.image.clone();
+    if target.image.is_empty() {
+        verdict.error = Some(format!(
+            "{}: held to a ground truth the manifest's files do not name",
+            entry.id
+        ));
+        return verdict;
+    }
     if let Some(path) = verdict.candidate.clone()
         && let Err(e) = measure(suite, entry, &target, &path, mode, &mut verdict)
     {

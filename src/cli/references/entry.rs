@@ -6,7 +6,7 @@
 
 use super::ground_truth::{self, Plan};
 use super::manifest::{
-    Against, Check, EntryRecord, Export, Files, GroundTruth, PhysicallyBased, Settings,
+    Against, Check, EntryRecord, Export, Files, GroundTruth, PhysicallyBased, Settings, Transport,
 };
 use anyhow::{Context, Result};
 use clap::ValueEnum;
@@ -139,17 +139,28 @@ pub fn make(suite: &Path, id: &str, settings: &Settings) -> Result<EntryRecord> 
     {
         let paths = settings.ground_truth_paths;
         let traced = ground_truth::scene_table(&table, *transport, paths);
-        let moments = ground_truth::render(&traced, settings.samples)
-            .with_context(|| format!("{id}: its ground truth"))?;
-        write("ground-truth.exr", &moments.mean, 1.0)?;
-        write("ground-truth-variance.exr", &moments.variance, 1.0)?;
+        let context = || format!("{id}: its ground truth");
         files.ground_truth = Some(format!("{id}/ground-truth.exr"));
-        files.ground_truth_variance = Some(format!("{id}/ground-truth-variance.exr"));
-        made_truth = Some(GroundTruth {
-            transport: *transport,
-            renders: settings.samples,
-            paths: paths * paths,
-            biased_by: biased_by.clone(),
+        made_truth = Some(if *transport == Transport::Whitted {
+            let image = ground_truth::render_once(&traced).with_context(context)?;
+            write("ground-truth.exr", &image, 1.0)?;
+            GroundTruth {
+                transport: *transport,
+                renders: 1,
+                paths: None,
+                biased_by: biased_by.clone(),
+            }
+        } else {
+            let moments = ground_truth::render(&traced, settings.samples).with_context(context)?;
+            write("ground-truth.exr", &moments.mean, 1.0)?;
+            write("ground-truth-variance.exr", &moments.variance, 1.0)?;
+            files.ground_truth_variance = Some(format!("{id}/ground-truth-variance.exr"));
+            GroundTruth {
+                transport: *transport,
+                renders: settings.samples,
+                paths: Some(paths * paths),
+                biased_by: biased_by.clone(),
+            }
         });
     }
     std::fs::create_dir_all(root.join("export")).context("export")?;
@@ -199,6 +210,13 @@ pub fn make(suite: &Path, id: &str, settings: &Settings) -> Result<EntryRecord> 
         same_sampler_only: false,
     }];
     let physically_based = match plan {
+        Plan::Trace {
+            transport: Transport::Whitted,
+            ..
+        } => PhysicallyBased::Checked {
+            against: Against::GroundTruth,
+            checks: checks[..1].to_vec(),
+        },
         Plan::Trace { .. } => PhysicallyBased::Checked {
             against: Against::GroundTruth,
             checks: welch,

@@ -12,20 +12,24 @@
 //!   Brotman & Badler's points, Cook's jittered cells) and shadow maps (their
 //!   depth bias and texels): direct light only, paths of one surface (the
 //!   transport the entry and its Mitsuba export model);
+//! - environment mapping, where the map's surroundings are the scene's (the
+//!   backdrop, or a map captured from inside the scene): Whitted's tracer, whose
+//!   rays meet what the map only approximates (the object itself, parallax,
+//!   both faces of a refracting object), deterministic, held by FLIP;
 //! - the path-tracing entries: their reference is the ground truth already;
-//! - a participating medium (light volumes), translucent panels, glossy mirrors
-//!   or environment-mapped materials: none, for the path tracer carries no
-//!   medium, no diffuse transmission and no glossy lobe about the mirror, and
-//!   traces a mirror where the entry reads a map of surroundings a path would not
-//!   meet (the manifest says which); nor lights that cast no shadows
-//!   (`shadows.method = "none"`);
+//! - a participating medium (light volumes), translucent panels, glossy mirrors,
+//!   bump maps, or an environment map of surroundings the scene does not hold:
+//!   none, for the tracers carry no medium, no diffuse transmission, no glossy
+//!   lobe about the mirror and no perturbed normals, and would trace into
+//!   emptiness where the map shows a world (the manifest says which); nor lights
+//!   that cast no shadows (`shadows.method = "none"`);
 //! - every other entry is exact for what it models: its reference is the answer.
 
 use super::manifest::Transport;
 use anyhow::{Context, Result};
 use lumiere::glam::Vec3;
 use lumiere::render::integrators::Integrator;
-use lumiere::scene::{Light, Scene};
+use lumiere::scene::{EnvironmentSource, Light, Scene};
 use lumiere::settings::ShadowMethod;
 use lumiere::{Moments, MomentsSum, Renderer, scene_from_toml};
 
@@ -71,6 +75,9 @@ pub fn plan(scene: &Scene) -> Plan {
             "a glossy mirror (`gloss`): the path tracer's mirrors are ideal".into(),
         );
     }
+    if materials().any(|m| m.bump.is_some()) {
+        return Plan::Unavailable("bump maps: the tracers do not perturb normals".into());
+    }
     match integrator {
         Integrator::Radiosity
         | Integrator::TwoPass
@@ -88,10 +95,25 @@ pub fn plan(scene: &Scene) -> Plan {
             "a participating medium (light volumes): the path tracer carries none".into(),
         );
     }
-    if materials().any(|m| m.environment.is_some()) {
-        return Plan::Unavailable(
-            "environment-mapped materials: a map stands for surroundings a traced path does not meet".into(),
-        );
+    // An environment map has a traced answer where its surroundings are the
+    // scene's: the backdrop rays that leave the scene meet, or a map captured
+    // from the scene itself.
+    let traced_answer = |e: usize| {
+        scene.render.backdrop == Some(e)
+            || matches!(scene.environments[e].source, EnvironmentSource::Capture(_))
+    };
+    let mapped: Vec<usize> = materials().filter_map(|m| m.environment).collect();
+    if !mapped.is_empty() {
+        if !mapped.iter().all(|&e| traced_answer(e)) {
+            return Plan::Unavailable(
+                "an environment map of surroundings the scene does not hold: no traced answer"
+                    .into(),
+            );
+        }
+        return Plan::Trace {
+            transport: Transport::Whitted,
+            biased_by: "environment mapping".into(),
+        };
     }
     if integrator == Integrator::RayTracing {
         return Plan::Exact;
@@ -123,16 +145,21 @@ pub fn plan(scene: &Scene) -> Plan {
     }
 }
 
-/// The entry's scene `table` (extends resolved, its size set) made a path
-/// tracer's: its radiosity and global settings and its shadow method replaced,
-/// `paths` × `paths` paths a pixel, one surface a path for direct transport.
+/// The entry's scene `table` (extends resolved, its size set) made a tracer's:
+/// its radiosity and global settings and its shadow method replaced; for the
+/// path tracer `paths` × `paths` paths a pixel, one surface a path for direct
+/// transport; Whitted's tracer with its defaults.
 pub fn scene_table(table: &toml::Table, transport: Transport, paths: u32) -> toml::Table {
     let mut table = table.clone();
     table.remove("radiosity");
     table.remove("shadows");
     let mut global = toml::Table::new();
-    global.insert("method".into(), "path-tracing".into());
-    global.insert("samples".into(), (paths as i64).into());
+    if transport == Transport::Whitted {
+        global.insert("method".into(), "ray-tracing".into());
+    } else {
+        global.insert("method".into(), "path-tracing".into());
+        global.insert("samples".into(), (paths as i64).into());
+    }
     if transport == Transport::Direct {
         global.insert("depth".into(), 1.into());
     }
@@ -142,6 +169,13 @@ pub fn scene_table(table: &toml::Table, transport: Transport, paths: u32) -> tom
         render.remove("supersample");
     }
     table
+}
+
+/// Whitted's render of `table` (from `scene_table`): deterministic, one render.
+pub fn render_once(table: &toml::Table) -> Result<lumiere::Image> {
+    let text = toml::to_string(table).context("writing the ground truth's scene as TOML")?;
+    let scene = scene_from_toml(&text, &[]).context("the ground truth's scene")?;
+    Ok(Renderer::new(scene).render()?)
 }
 
 /// The mean and variance over `renders` seeds of the path tracer's renders of

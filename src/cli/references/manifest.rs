@@ -21,7 +21,7 @@
 //!                "scene": "ID/scene.toml",             lumiere's own scene
 //!                "ground_truth": "ID/ground-truth.exr",         biased entries:
 //!                "ground_truth_variance": "ID/ground-truth-variance.exr" }, path traced
-//!     "ground_truth": { "transport": "full" | "direct",  every path, or one surface
+//!     "ground_truth": { "transport": "full" | "direct" | "whitted",
 //!                       "renders": N, "paths": P,       seeds, paths per pixel each
 //!                       "biased_by": "radiosity" },     what the entry's method misses
 //!     "exports": { FORMAT: { "file": "ID/export/scene.EXT",
@@ -101,10 +101,12 @@ pub struct EntryRecord {
 #[serde(deny_unknown_fields)]
 pub struct GroundTruth {
     pub transport: Transport,
-    /// Renders (seeds) its mean and variance are taken over.
+    /// Renders (seeds) its mean and variance are taken over (1: Whitted's, with
+    /// no variance).
     pub renders: u32,
-    /// Paths per pixel of each render.
-    pub paths: u32,
+    /// Paths per pixel of each render (none for Whitted's adaptive rays).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paths: Option<u32>,
     /// What the entry's own method leaves out or approximates.
     pub biased_by: String,
 }
@@ -117,6 +119,8 @@ pub enum Transport {
     Full,
     /// Direct light only: paths of one surface.
     Direct,
+    /// Whitted's: direct light, and the ideal mirror's and refraction's rays.
+    Whitted,
 }
 
 /// What a physically based renderer's image of the scene is held to.

@@ -463,3 +463,51 @@ fn ray_traced_entries_keep_their_own_antialiasing() {
         .collect();
     assert_eq!(supersample, [1, 4], "Whitted's subdivision, then 4 x 4");
 }
+
+/// Environment mapping's ground truth is Whitted's tracer where the map's
+/// surroundings are the scene's: one deterministic render without a variance,
+/// held by FLIP; the teapot that does not reflect itself in its map does in it.
+#[test]
+fn a_captured_environment_maps_ground_truth_is_whitteds() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let run = lumiere(
+        &[
+            "references",
+            "-o",
+            "suite",
+            "--width",
+            "48",
+            "--samples",
+            "2",
+            "reflection-mapping-self",
+        ],
+        d,
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let m = manifest(&d.join("suite"));
+    let entry = &m["entries"][0];
+    assert_eq!(
+        entry["ground_truth"],
+        serde_json::json!({
+            "transport": "whitted", "renders": 1, "biased_by": "environment mapping"
+        })
+    );
+    assert!(entry["files"].get("ground_truth_variance").is_none());
+    assert_eq!(entry["physically_based"]["against"], "ground-truth");
+    assert_eq!(entry["physically_based"]["checks"][0]["metric"], "flip");
+    let image = |file: &str| lumiere::read_image(&d.join("suite").join(file)).unwrap();
+    let truth = image("reflection-mapping-self/ground-truth.exr");
+    let reference = image("reflection-mapping-self/reference.exr");
+    assert_eq!((truth.width, truth.height), (48, 36));
+    let differing = truth
+        .pixels
+        .iter()
+        .zip(&reference.pixels)
+        .filter(|(a, b)| (**a - **b).abs().max_element() > 0.05)
+        .count();
+    assert!(
+        differing > 0,
+        "the traced mirror and the map's lookup should differ somewhere"
+    );
+}

@@ -224,6 +224,34 @@ fn what_cannot_be_carried_over_is_named_and_a_wrong_extension_refused() {
     )
     .stderr;
     assert!(unshadowed.contains("casts no shadows"), "{unshadowed}");
+    // Glass goes to Mitsuba whole, as its dielectric: Fresnel's split at the
+    // index, the reflection white and the transmission the material's.
+    let glass = lumiere_ok(
+        &[
+            "export",
+            "photon-map-caustic",
+            "--format",
+            "mitsuba",
+            "-o",
+            "g.xml",
+        ],
+        d,
+    )
+    .stderr;
+    assert_eq!(glass, "");
+    let xml = std::fs::read_to_string(d.join("g.xml")).unwrap();
+    let dielectric = &xml[xml
+        .find("<bsdf type=\"dielectric\">")
+        .expect("a dielectric")..];
+    let dielectric = &dielectric[..dielectric.find("</bsdf>").unwrap()];
+    for line in [
+        r#"<float name="int_ior" value="1.5"/>"#,
+        r#"<float name="ext_ior" value="1"/>"#,
+        r#"<rgb name="specular_reflectance" value="1, 1, 1"/>"#,
+        r#"<rgb name="specular_transmittance" value="1, 1, 1"/>"#,
+    ] {
+        assert!(dielectric.contains(line), "{dielectric}");
+    }
     // The same box with its shadows: nothing is left out.
     let quiet = lumiere_ok(
         &["export", "shadow-volumes", "--format", "pov", "-o", "c.pov"],

@@ -276,3 +276,29 @@ fn precomputed_irradiance_keeps_the_photon_map_within_0_02_of_a_path_tracer() {
     let photons = flip_of("photon-map-precomputed", &[], GLOBAL_REFERENCE, 256);
     assert!(photons <= 0.02, "photon-map-precomputed: FLIP {photons:.5}");
 }
+
+/// The glass ball on the box's floor (`photon-map-caustic`) against Mitsuba 3's
+/// path tracer on the exported scene (the ball a dielectric of index 1.5), held in
+/// tests/references/photon-map-caustic-mitsuba.pfm: `lumiere export
+/// photon-map-caustic --format mitsuba --width 256 --height 256`, then
+/// `tools/mitsuba_moments.py --xml` with 2 renders of 4,096 spp (llvm_ad_rgb), the
+/// mean. The issue asks 0.03. Jensen's gather measured 0.0251 (BENCHMARKS.md, 100 s
+/// at this size); the test renders with Christensen's precomputed irradiance, whose
+/// caustic map and its cone-filtered estimate are the same and whose gather is
+/// 0.004 from Jensen's: measured 0.0255. Without the caustic map (no caustic
+/// photons) the bright patch under the ball is gone.
+const CAUSTIC_REFERENCE: &str = "tests/references/photon-map-caustic-mitsuba.pfm";
+
+#[test]
+fn the_glass_balls_caustic_is_within_0_03_of_a_path_tracer() {
+    let precomputed = ["--set", "global.precomputed_irradiance=true"];
+    let caustic = flip_of("photon-map-caustic", &precomputed, CAUSTIC_REFERENCE, 256);
+    assert!(caustic <= 0.03, "photon-map-caustic: FLIP {caustic:.5}");
+    let mut without = precomputed.to_vec();
+    without.extend(["--set", "global.caustic_photons=0"]);
+    let none = flip_of("photon-map-caustic", &without, CAUSTIC_REFERENCE, 256);
+    assert!(
+        none > caustic,
+        "without caustics {none:.5}, with {caustic:.5}"
+    );
+}

@@ -161,7 +161,13 @@ fn precomputed_irradiance_under_a_point_light_is_its_irradiance() {
         2.0 * (1.0 / d2.sqrt()) / d2
     };
     let grid: Vec<DVec3> = (0..81)
-        .map(|i| DVec3::new((i % 9) as f64 * 0.25 - 1.0, 0.0, (i / 9) as f64 * 0.25 - 1.0))
+        .map(|i| {
+            DVec3::new(
+                (i % 9) as f64 * 0.25 - 1.0,
+                0.0,
+                (i / 9) as f64 * 0.25 - 1.0,
+            )
+        })
         .collect();
     let ratio = mean_ratio(
         &grid,
