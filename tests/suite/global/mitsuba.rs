@@ -285,8 +285,9 @@ fn precomputed_irradiance_keeps_the_photon_map_within_0_02_of_a_path_tracer() {
 /// mean. The issue asks 0.03. Jensen's gather measured 0.0251 (BENCHMARKS.md, 100 s
 /// at this size); the test renders with Christensen's precomputed irradiance, whose
 /// caustic map and its cone-filtered estimate are the same and whose gather is
-/// 0.004 from Jensen's: measured 0.0255. Without the caustic map (no caustic
-/// photons) the bright patch under the ball is gone.
+/// 0.004 from Jensen's: measured 0.0259, a margin of 0.0041. Without the caustic
+/// map (no caustic photons) the bright patch under the ball is gone and the bound
+/// fails (measured 0.0307).
 const CAUSTIC_REFERENCE: &str = "tests/references/photon-map-caustic-mitsuba.pfm";
 
 #[test]
@@ -298,7 +299,7 @@ fn the_glass_balls_caustic_is_within_0_03_of_a_path_tracer() {
     without.extend(["--set", "global.caustic_photons=0"]);
     let none = flip_of("photon-map-caustic", &without, CAUSTIC_REFERENCE, 256);
     assert!(
-        none > caustic,
+        none > 0.03,
         "without caustics {none:.5}, with {caustic:.5}"
     );
 }
