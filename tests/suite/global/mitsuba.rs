@@ -298,8 +298,5 @@ fn the_glass_balls_caustic_is_within_0_03_of_a_path_tracer() {
     let mut without = precomputed.to_vec();
     without.extend(["--set", "global.caustic_photons=0"]);
     let none = flip_of("photon-map-caustic", &without, CAUSTIC_REFERENCE, 256);
-    assert!(
-        none > 0.03,
-        "without caustics {none:.5}, with {caustic:.5}"
-    );
+    assert!(none > 0.03, "without caustics {none:.5}, with {caustic:.5}");
 }
