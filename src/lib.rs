@@ -107,6 +107,7 @@ pub use render::{BufferInfo, Frame, Prepasses, Renderer, render};
 /// The largest image side a scene may ask for, in pixels.
 pub use scene::MAX_SIDE as MAX_IMAGE_SIDE;
 pub use scene::{
-    Camera, DistantLight, Light, LightKind, Material, Object, PointLight, Polygon, PolygonLight,
-    Reach, Scene, SphereLight, SpotDistribution, SpotLight, Vertex,
+    Camera, DistantLight, Environment, EnvironmentSource, Light, LightKind, Material, Object,
+    PointLight, Polygon, PolygonLight, Reach, Scene, SphereLight, SpotDistribution, SpotLight,
+    Vertex,
 };

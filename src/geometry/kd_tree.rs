@@ -56,7 +56,28 @@ impl<T> KdTree<T> {
         }
         let mut heap = BinaryHeap::with_capacity(k + 1);
         let mut worst = f64::INFINITY;
-        self.search(0, self.items.len(), x, k, &mut heap, &mut worst);
+        self.walk(
+            0,
+            self.items.len(),
+            x,
+            &mut worst,
+            &mut |index, distance2, worst| {
+                // Non-negative floats order as their bits do.
+                let entry = Farthest(distance2.to_bits(), index);
+                if heap.len() < k {
+                    heap.push(entry);
+                    if heap.len() == k {
+                        *worst = f64::from_bits(heap.peek().map_or(0, |f| f.0));
+                    }
+                } else if distance2 < *worst {
+                    // The farthest kept gives way: one sift instead of a push and a pop.
+                    if let Some(mut top) = heap.peek_mut() {
+                        *top = entry;
+                    }
+                    *worst = f64::from_bits(heap.peek().map_or(0, |f| f.0));
+                }
+            },
+        );
         found.extend(heap.into_iter().map(|Farthest(bits, index)| Neighbour {
             distance2: f64::from_bits(bits),
             index,
@@ -68,53 +89,32 @@ impl<T> KdTree<T> {
     pub fn nearest_where(&self, x: DVec3, accept: impl Fn(&T) -> bool) -> Option<Neighbour> {
         let mut best = None;
         let mut worst = f64::INFINITY;
-        self.search_where(0, self.items.len(), x, &accept, &mut best, &mut worst);
+        self.walk(
+            0,
+            self.items.len(),
+            x,
+            &mut worst,
+            &mut |index, distance2, worst| {
+                if distance2 < *worst && accept(&self.items[index].1) {
+                    *worst = distance2;
+                    best = Some(Neighbour { distance2, index });
+                }
+            },
+        );
         best
     }
 
-    fn search_where(
+    /// Visits the nodes of the subtree `low..high` near `x`, the nearer side of
+    /// each split first, with each node's index and squared distance; a far side
+    /// is skipped when its splitting plane lies beyond `worst` (which `visit`
+    /// narrows).
+    fn walk(
         &self,
         low: usize,
         high: usize,
         x: DVec3,
-        accept: &impl Fn(&T) -> bool,
-        best: &mut Option<Neighbour>,
         worst: &mut f64,
-    ) {
-        if low >= high {
-            return;
-        }
-        let middle = low + (high - low) / 2;
-        let (point, payload) = &self.items[middle];
-        let axis = self.axes[middle] as usize;
-        let delta = x[axis] - point[axis];
-        let (near, far) = if delta < 0.0 {
-            ((low, middle), (middle + 1, high))
-        } else {
-            ((middle + 1, high), (low, middle))
-        };
-        self.search_where(near.0, near.1, x, accept, best, worst);
-        let distance2 = x.distance_squared(*point);
-        if distance2 < *worst && accept(payload) {
-            *worst = distance2;
-            *best = Some(Neighbour {
-                distance2,
-                index: middle,
-            });
-        }
-        if delta * delta < *worst {
-            self.search_where(far.0, far.1, x, accept, best, worst);
-        }
-    }
-
-    fn search(
-        &self,
-        low: usize,
-        high: usize,
-        x: DVec3,
-        k: usize,
-        heap: &mut BinaryHeap<Farthest>,
-        worst: &mut f64,
+        visit: &mut impl FnMut(usize, f64, &mut f64),
     ) {
         if low >= high {
             return;
@@ -128,24 +128,10 @@ impl<T> KdTree<T> {
         } else {
             ((middle + 1, high), (low, middle))
         };
-        self.search(near.0, near.1, x, k, heap, worst);
-        let distance2 = x.distance_squared(*point);
-        // Non-negative floats order as their bits do.
-        let entry = Farthest(distance2.to_bits(), middle);
-        if heap.len() < k {
-            heap.push(entry);
-            if heap.len() == k {
-                *worst = f64::from_bits(heap.peek().map_or(0, |f| f.0));
-            }
-        } else if distance2 < *worst {
-            // The farthest kept gives way: one sift instead of a push and a pop.
-            if let Some(mut top) = heap.peek_mut() {
-                *top = entry;
-            }
-            *worst = f64::from_bits(heap.peek().map_or(0, |f| f.0));
-        }
+        self.walk(near.0, near.1, x, worst, visit);
+        visit(middle, x.distance_squared(*point), worst);
         if delta * delta < *worst {
-            self.search(far.0, far.1, x, k, heap, worst);
+            self.walk(far.0, far.1, x, worst, visit);
         }
     }
 }

@@ -28,9 +28,8 @@
 use super::manifest::Transport;
 use anyhow::{Context, Result};
 use lumiere::glam::Vec3;
-use lumiere::render::integrators::Integrator;
-use lumiere::scene::{EnvironmentSource, Light, Scene};
-use lumiere::settings::ShadowMethod;
+use lumiere::settings::{GlobalMethod, ShadowMethod};
+use lumiere::{EnvironmentSource, Light, Scene};
 use lumiere::{Moments, MomentsSum, Renderer, scene_from_toml};
 
 /// What a physically based renderer is held to for one entry.
@@ -52,8 +51,10 @@ pub enum Plan {
 
 /// The plan for `scene` (an entry's scene as its reference renders it).
 pub fn plan(scene: &Scene) -> Plan {
-    let integrator = Integrator::of(scene);
-    if integrator == Integrator::PathTracing {
+    // The integrator the scene chooses: `[global] method`, else radiosity when it
+    // has `[radiosity]`, else direct light.
+    let method = scene.global.as_ref().map(|g| g.method);
+    if method == Some(GlobalMethod::PathTracing) {
         return Plan::Itself;
     }
     let used = |index: usize| scene.polygons.iter().any(|p| p.material == index);
@@ -78,17 +79,18 @@ pub fn plan(scene: &Scene) -> Plan {
     if materials().any(|m| m.bump.is_some()) {
         return Plan::Unavailable("bump maps: the tracers do not perturb normals".into());
     }
-    match integrator {
-        Integrator::Radiosity
-        | Integrator::TwoPass
-        | Integrator::RushmeierTorrance
-        | Integrator::PhotonMap => {
-            return Plan::Trace {
-                transport: Transport::Full,
-                biased_by: integrator.name().to_string(),
-            };
-        }
-        Integrator::PathTracing | Integrator::RayTracing | Integrator::Direct => {}
+    let solves_interreflection = match method {
+        Some(m) => matches!(
+            m,
+            GlobalMethod::TwoPass | GlobalMethod::RushmeierTorrance | GlobalMethod::PhotonMap
+        ),
+        None => scene.radiosity.is_some(),
+    };
+    if solves_interreflection {
+        return Plan::Trace {
+            transport: Transport::Full,
+            biased_by: method.map_or("radiosity", |m| m.name()).to_string(),
+        };
     }
     if scene.medium.is_some() {
         return Plan::Unavailable(
@@ -115,7 +117,7 @@ pub fn plan(scene: &Scene) -> Plan {
             biased_by: "environment mapping".into(),
         };
     }
-    if integrator == Integrator::RayTracing {
+    if method == Some(GlobalMethod::RayTracing) {
         return Plan::Exact;
     }
     let extended = scene

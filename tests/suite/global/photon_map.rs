@@ -22,11 +22,7 @@ proptest! {
         query in (-1.5f64..1.5, -1.5f64..1.5, -1.5f64..1.5),
         k in 1usize..40,
     ) {
-        let items: Vec<(DVec3, usize)> = points
-            .iter()
-            .enumerate()
-            .map(|(i, &(x, y, z))| (DVec3::new(x, y, z), i))
-            .collect();
+        let items = indexed(&points);
         let q = DVec3::new(query.0, query.1, query.2);
         let mut brute: Vec<f64> = items.iter().map(|(p, _)| p.distance_squared(q)).collect();
         brute.sort_by(f64::total_cmp);
@@ -42,19 +38,15 @@ proptest! {
         }
     }
 
-    /// The nearest point whose payload is accepted (here: an even index) is the
-    /// nearest such point of all; none when none is.
+    /// The nearest point whose payload is accepted (here: an index of 1 modulo
+    /// `modulus`) is the nearest such point of all; none when none is.
     #[test]
     fn the_tree_finds_the_nearest_accepted(
         points in prop::collection::vec((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), 1..300),
         query in (-1.5f64..1.5, -1.5f64..1.5, -1.5f64..1.5),
         modulus in 1usize..5,
     ) {
-        let items: Vec<(DVec3, usize)> = points
-            .iter()
-            .enumerate()
-            .map(|(i, &(x, y, z))| (DVec3::new(x, y, z), i))
-            .collect();
+        let items = indexed(&points);
         let q = DVec3::new(query.0, query.1, query.2);
         let accept = |i: &usize| i % modulus == 1 % modulus;
         let brute = items
@@ -69,6 +61,15 @@ proptest! {
             prop_assert!(accept(&tree.items()[n.index].1));
         }
     }
+}
+
+/// The points with their indices as payloads.
+fn indexed(points: &[(f64, f64, f64)]) -> Vec<(DVec3, usize)> {
+    points
+        .iter()
+        .enumerate()
+        .map(|(i, &(x, y, z))| (DVec3::new(x, y, z), i))
+        .collect()
 }
 
 /// A floor (ρ = 0.5, 8 x 8) under a point light of intensity I at height h, with
