@@ -173,22 +173,28 @@ pub fn scene_table(table: &toml::Table, transport: Transport, paths: u32) -> tom
     table
 }
 
+/// One render of `text` (a `scene_table` as TOML) with `overrides`.
+fn render_text(text: &str, overrides: &[String]) -> Result<lumiere::Image> {
+    let scene = scene_from_toml(text, overrides).context("the ground truth's scene")?;
+    Ok(Renderer::new(scene).render()?)
+}
+
+fn to_text(table: &toml::Table) -> Result<String> {
+    toml::to_string(table).context("writing the ground truth's scene as TOML")
+}
+
 /// Whitted's render of `table` (from `scene_table`): deterministic, one render.
 pub fn render_once(table: &toml::Table) -> Result<lumiere::Image> {
-    let text = toml::to_string(table).context("writing the ground truth's scene as TOML")?;
-    let scene = scene_from_toml(&text, &[]).context("the ground truth's scene")?;
-    Ok(Renderer::new(scene).render()?)
+    render_text(&to_text(table)?, &[])
 }
 
 /// The mean and variance over `renders` seeds of the path tracer's renders of
 /// `table` (from `scene_table`).
 pub fn render(table: &toml::Table, renders: u32) -> Result<Moments> {
-    let text = toml::to_string(table).context("writing the ground truth's scene as TOML")?;
+    let text = to_text(table)?;
     let mut sum: Option<MomentsSum> = None;
     for seed in 0..renders {
-        let scene = scene_from_toml(&text, &[format!("shadows.seed={seed}")])
-            .context("the ground truth's scene")?;
-        let image = Renderer::new(scene).render()?;
+        let image = render_text(&text, &[format!("shadows.seed={seed}")])?;
         sum.get_or_insert_with(|| MomentsSum::new(image.width, image.height))
             .add(&image)?;
     }
